@@ -1,0 +1,33 @@
+#pragma once
+// Kernel 2, projective TSDF integration. Device: shaders/integrate_tsdf.comp, dispatched by
+// DeviceFusion. This file is the C++ reference: the readable specification of the update.
+#include <vector>
+
+#include "core/types.h"
+#include "kernels/camera_math.h"
+#include "map/map_config.h"
+#include "map/tsdf_map.h"
+
+namespace strata {
+
+/// Observed RGB of a pixel packed as r | g << 8 | b << 16 (0 when there is no colour image).
+std::uint32_t packedPixelColor(const ColorImage& color, int u, int v);
+
+/// One voxel's update from one frame (the rule of integrate_tsdf.comp):
+/// project the voxel centre p_W into the depth image (nearest pixel); skip if outside, behind the
+/// camera or the depth is invalid/out of range; skip if the distance along the ray
+/// (depth - z) * |ray| is below -truncation; sdf = distance to the plane of the observed point
+/// (config.distance_mode kPointToPlane, where the pixel's normal is valid) or along the ray; tsdf = min(sdf, truncation); weight 1 or 1/depth^2, times a
+/// linear drop-off behind the surface; running weighted average of tsdf and colour; weight clamp.
+void integrateVoxelReference(TsdfVoxel& voxel, const Eigen::Vector3f& p_W, const DepthImage& depth,
+                             const std::vector<Eigen::Vector4f>* normals_C,
+                             const ColorImage* color, const FrameCamera& camera,
+                             const MapConfig& config);
+
+/// Whole frame on the host: allocate the touched blocks (touchedBlocksReference) and update all
+/// their voxels. Returns the touched blocks. Uses up to `threads` threads over blocks.
+std::vector<BlockIndex> integrateFrameReference(TsdfMap& map, const RgbdFrame& frame,
+                                                const CameraIntrinsics& intrinsics,
+                                                int threads = 2);
+
+}  // namespace strata

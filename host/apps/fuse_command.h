@@ -1,0 +1,38 @@
+#pragma once
+// `strata fuse [DATASET]`: fuse a dataset (TUM, 7-Scenes, or the built-in analytic scene) into a
+// TSDF map on the device, then write the mesh, the map and a rendered view.
+#include <string>
+
+#include "io/dataset.h"
+#include "map/map_config.h"
+
+namespace CLI {
+class App;
+}
+
+namespace strata::apps {
+
+struct FuseOptions {
+  std::string dataset;  // "" or "analytic": the built-in analytic scene
+  MapConfig map;
+  float truncation_m = 0.0f;  // 0: map.truncation_voxels applies
+  std::string weight = "constant";
+  std::string distance = "point-to-plane";
+  int frames = 0;             // 0: all
+  int stride = 1;
+  std::string mesh_path;
+  std::string map_path;
+  std::string render_path;    // PNG of the map rendered from the last pose
+  std::string device;
+  bool reference = false;     // fuse with the C++ reference instead of the device
+  bool quiet = false;
+  DatasetOptions dataset_options;
+};
+
+/// Registers `fuse` on `app`; the options are filled when it parses.
+CLI::App* addFuseCommand(CLI::App& app, FuseOptions& options);
+
+/// Runs the fusion; returns the process exit code. Errors print a message naming the problem.
+int runFuse(FuseOptions options);
+
+}  // namespace strata::apps

@@ -1,0 +1,41 @@
+#pragma once
+// How a dataset's depth camera is described: pinhole intrinsics plus the depth PNG encoding.
+// Sources, later ones overriding earlier ones (see resolveCameraModel):
+//   format defaults -> camera.yaml in the dataset folder -> DatasetOptions::camera_file
+//   -> DatasetOptions::intrinsics / depth_scale.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/types.h"
+#include "io/dataset.h"
+
+namespace strata {
+
+struct CameraModel {
+  CameraIntrinsics intrinsics;
+  /// PNG units per metre (TUM: 5000, 7-Scenes: 1000).
+  double depth_scale = 5000.0;
+  /// Raw PNG values that mark an invalid pixel; 0 is always invalid.
+  std::vector<std::uint16_t> depth_invalid{0};
+  /// Where the values came from, for messages ("defaults", a file name...).
+  std::string source = "defaults";
+
+  /// Throws InputError naming `source` and the bad field.
+  void validate() const;
+};
+
+/// Applies the keys present in a camera YAML file (width, height, fx, fy, cx, cy, depth_scale,
+/// depth_invalid); absent keys keep their value. Throws InputError naming the file and the key.
+void applyCameraYaml(const std::string& path, CameraModel* model);
+
+/// Reads a 7-Scenes `camera-intrinsics.txt` (3x3 K, row-major) into fx, fy, cx, cy.
+/// Throws InputError naming the file.
+void applyIntrinsicsMatrixFile(const std::string& path, CameraModel* model);
+
+/// Applies, in order, `<folder>/camera.yaml` if present, options.camera_file, options.intrinsics
+/// and options.depth_scale to `defaults`, then validates. Throws InputError naming the source.
+CameraModel resolveCameraModel(const std::string& folder, const DatasetOptions& options,
+                               CameraModel defaults);
+
+}  // namespace strata

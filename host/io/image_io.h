@@ -1,0 +1,40 @@
+#pragma once
+// PNG/JPEG reading and writing for depth and colour images (OpenCV underneath, not exposed).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/types.h"
+
+namespace strata {
+
+/// Turns raw 16-bit depth PNG values into metres: value / depth_scale, 0 for invalid values.
+/// Thread safe (immutable after construction).
+class DepthDecoder {
+ public:
+  /// `depth_invalid` lists raw values that mean "no measurement" (0 should be among them).
+  DepthDecoder(double depth_scale, const std::vector<std::uint16_t>& depth_invalid);
+  float metres(std::uint16_t raw) const { return lut_m_[raw]; }
+  double depthScale() const { return depth_scale_; }
+
+ private:
+  double depth_scale_;
+  std::vector<float> lut_m_;  // 65536 entries
+};
+
+/// Reads a 16-bit single-channel depth PNG. Throws InputError naming the file when it is missing,
+/// unreadable or of another type (e.g. 8-bit or 3-channel).
+DepthImage readDepthPng(const std::string& path, const DepthDecoder& decoder);
+
+/// Reads a colour image (any format OpenCV reads) as RGB. Throws InputError naming the file.
+ColorImage readColorImage(const std::string& path);
+
+/// Writes depth as a 16-bit PNG: round(depth_m * depth_scale); 0 and non-finite stay 0. Throws
+/// InputError when a depth does not fit 16 bits at that scale, Error when the file cannot be
+/// written.
+void writeDepthPng(const std::string& path, const DepthImage& depth, double depth_scale);
+
+/// Writes an RGB image as PNG. Throws Error when the file cannot be written.
+void writeColorPng(const std::string& path, const ColorImage& color);
+
+}  // namespace strata

@@ -1,0 +1,163 @@
+// Block allocation + TSDF integration: device against the C++ reference, both against the exact
+// scene, on the analytic scene and on the real redkitchen sample.
+#include <gtest/gtest.h>
+
+#include <limits>
+
+#include "core/error.h"
+#include "eval/accuracy.h"
+#include "fusion_fixture.h"
+#include "io/dataset.h"
+#include "kernels/block_allocation.h"
+#include "kernels/tsdf_integration.h"
+#include "map_compare.h"
+#include "mesh/extract_mesh.h"
+#include "sim/analytic_dataset.h"
+#include "test_utils.h"
+
+namespace strata {
+namespace {
+
+using test::compareMaps;
+using test::fuseOnDevice;
+using test::fuseReference;
+
+constexpr float kMillimetre = 0.001f;
+constexpr float kWeightRelTolerance = 1e-4f;
+
+sim::AnalyticDataset analyticDataset(int frames) {
+  sim::AnalyticDatasetConfig config;
+  config.frame_count = frames;
+  return sim::AnalyticDataset(config);
+}
+
+void expectDeviceMatchesReference(const TsdfMap& device, const TsdfMap& reference) {
+  const test::MapDifference diff =
+      compareMaps(device, reference, kMillimetre, kWeightRelTolerance);
+  EXPECT_GT(diff.updated_voxels, 10000u);
+  EXPECT_EQ(diff.blocks_only_in_a, 0u) << "blocks allocated on the device only";
+  EXPECT_EQ(diff.blocks_only_in_b, 0u) << "blocks allocated by the reference only";
+  EXPECT_LE(diff.distanceMismatchShare(), 0.001)
+      << diff.distance_mismatches << " of " << diff.updated_voxels << " voxels differ by > 1 mm";
+  EXPECT_LE(diff.weightMismatchShare(), 0.001)
+      << diff.weight_mismatches << " of " << diff.updated_voxels << " weights differ";
+}
+
+TEST(BlockAllocation, DeviceListsExactlyTheReferenceBlocks) {
+  const auto dataset = analyticDataset(1);
+  const RgbdFrame frame = dataset.load(0);
+  MapConfig config;
+  DeviceFusion fusion(test::sharedContext(), config);
+  const FrameStats stats = fusion.integrate(frame, dataset.intrinsics());
+  const auto reference = touchedBlocksReference(
+      frame.depth, FrameCamera::from(dataset.intrinsics(), frame.T_W_C), config);
+  EXPECT_EQ(stats.touched_blocks, reference.size());
+  TsdfMap map(config);
+  fusion.map().download(map);
+  ASSERT_EQ(map.blockCount(), reference.size());
+  for (const BlockIndex& b : reference) EXPECT_NE(map.findBlock(b), nullptr);
+}
+
+TEST(BlockAllocation, TableAndPoolGrowWithoutDroppingBlocks) {
+  const auto dataset = analyticDataset(3);
+  MapConfig small;
+  small.initial_block_capacity = 1;
+  small.initial_hash_capacity = 64;
+  DeviceFusion fusion(test::sharedContext(), small);
+  const TsdfMap grown = fuseOnDevice(dataset, small, 3, 1, &fusion);
+  EXPECT_GT(fusion.map().hashCapacity(), 64u);
+  EXPECT_GT(fusion.map().blockCapacity(), 1u);
+  const TsdfMap reference = fuseReference(dataset, small, 3);
+  expectDeviceMatchesReference(grown, reference);
+}
+
+TEST(TsdfIntegration, DeviceMatchesReferenceOnAnalyticScene) {
+  const auto dataset = analyticDataset(12);
+  MapConfig config;
+  config.weight_mode = WeightMode::kInverseDepthSquared;
+  expectDeviceMatchesReference(fuseOnDevice(dataset, config, 12, 3),
+                               fuseReference(dataset, config, 12, 3));
+}
+
+TEST(TsdfIntegration, AnalyticSceneAccuracyAt2cm) {
+  const auto dataset = analyticDataset(60);
+  MapConfig config;  // 2 cm voxels, 4 voxel truncation
+  const TsdfMap map = fuseOnDevice(dataset, config, 60, 2);
+  const auto tsdf = eval::evaluateTsdf(map, dataset.scene(), 0.5f * config.truncationDistance());
+  EXPECT_GT(tsdf.voxels, 10000u);
+  EXPECT_LE(tsdf.mean_abs_error_m, 0.25 * config.voxel_size_m)
+      << "mean |TSDF - SDF| = " << tsdf.mean_abs_error_m / config.voxel_size_m << " voxel";
+  const Mesh mesh = extractMesh(map);
+  const auto accuracy = eval::evaluateMesh(mesh, dataset.scene(), 0.5f * config.voxel_size_m);
+  EXPECT_GT(accuracy.vertices, 1000u);
+  EXPECT_GE(accuracy.fraction_within, 0.99)
+      << "p99 vertex distance " << accuracy.p99_distance_m / config.voxel_size_m << " voxel";
+}
+
+TEST(TsdfIntegration, DeviceMatchesReferenceOnRedkitchen) {
+  STRATA_REQUIRE_DATA("redkitchen", path);
+  const auto dataset = openDataset(path);
+  MapConfig config;
+  expectDeviceMatchesReference(fuseOnDevice(*dataset, config, 20, 4),
+                               fuseReference(*dataset, config, 20, 4));
+}
+
+TEST(TsdfIntegration, TumAndSevenScenesReadersGiveTheSameMap) {
+  STRATA_REQUIRE_DATA("redkitchen", path);
+  DatasetOptions tum;
+  tum.format = "tum";
+  DatasetOptions seven;
+  seven.format = "7scenes";
+  MapConfig config;
+  const TsdfMap a = fuseOnDevice(*openDataset(path, tum), config, 30, 3);
+  const TsdfMap b = fuseOnDevice(*openDataset(path, seven), config, 30, 3);
+  // The TUM file stores quaternions with 7 decimals, 7-Scenes full matrices: the poses agree to
+  // ~1e-7, so the maps must agree to far below a millimetre everywhere.
+  const test::MapDifference diff = compareMaps(a, b, 1e-4f, 1e-3f);
+  EXPECT_EQ(diff.blocks_only_in_a + diff.blocks_only_in_b, 0u);
+  EXPECT_LE(diff.distanceMismatchShare(), 1e-4) << "max " << diff.max_distance_difference_m;
+  EXPECT_LE(diff.weightMismatchShare(), 1e-4);
+}
+
+TEST(TsdfIntegration, BadFrameIsRefusedAndTheMapKept) {
+  const auto dataset = analyticDataset(2);
+  MapConfig config;
+  DeviceFusion fusion(test::sharedContext(), config);
+  fusion.integrate(dataset.load(0), dataset.intrinsics());
+  TsdfMap before(config);
+  fusion.map().download(before);
+
+  RgbdFrame bad = dataset.load(1);
+  bad.T_W_C.matrix()(0, 3) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(fusion.integrate(bad, dataset.intrinsics()), InputError);
+  RgbdFrame small = dataset.load(1);
+  small.depth = DepthImage(320, 240, 1.0f);
+  EXPECT_THROW(fusion.integrate(small, dataset.intrinsics()), InputError);
+  CameraIntrinsics zero = dataset.intrinsics();
+  zero.fx_px = 0.0f;
+  EXPECT_THROW(fusion.integrate(dataset.load(1), zero), InputError);
+
+  TsdfMap after(config);
+  fusion.map().download(after);
+  const test::MapDifference diff = compareMaps(before, after, 0.0f, 0.0f);
+  EXPECT_EQ(diff.blocks_only_in_a + diff.blocks_only_in_b + diff.distance_mismatches, 0u);
+}
+
+TEST(TsdfIntegration, NanAndOutOfRangeDepthAreIgnored) {
+  const auto dataset = analyticDataset(1);
+  RgbdFrame frame = dataset.load(0);
+  for (std::size_t i = 0; i < frame.depth.depth_m.size(); i += 3) {
+    frame.depth.depth_m[i] = (i % 2 == 0) ? std::numeric_limits<float>::quiet_NaN() : 100.0f;
+  }
+  MapConfig config;
+  DeviceFusion fusion(test::sharedContext(), config);
+  fusion.integrate(frame, dataset.intrinsics());
+  TsdfMap device(config);
+  fusion.map().download(device);
+  TsdfMap reference(config);
+  integrateFrameReference(reference, frame, dataset.intrinsics());
+  expectDeviceMatchesReference(device, reference);
+}
+
+}  // namespace
+}  // namespace strata
