@@ -38,7 +38,9 @@ MapDifference compareMaps(const TsdfMap& a, const TsdfMap& b, float distance_tol
       const double d = std::abs(double(va.tsdf_m) - double(vb.tsdf_m));
       diff.max_distance_difference_m = std::max(diff.max_distance_difference_m, d);
       if (d > distance_tolerance_m) ++diff.distance_mismatches;
-      const float scale = std::max(std::abs(va.weight), std::abs(vb.weight));
+      // Relative to the weight, or to one unit observation for lighter voxels: drop-off weights
+      // near the end of the band are tiny and their relative rounding is meaningless.
+      const float scale = std::max({std::abs(va.weight), std::abs(vb.weight), 1.0f});
       if (std::abs(va.weight - vb.weight) > weight_tolerance * scale) ++diff.weight_mismatches;
       if (!colorsClose(va.color_rgba, vb.color_rgba)) ++diff.color_mismatches;
     }

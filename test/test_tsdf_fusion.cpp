@@ -2,6 +2,9 @@
 // scene, on the analytic scene and on the real redkitchen sample.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <limits>
 
 #include "core/error.h"
@@ -11,7 +14,10 @@
 #include "kernels/block_allocation.h"
 #include "kernels/tsdf_integration.h"
 #include "map_compare.h"
+#include "io/image_io.h"
+#include "io/tum_writer.h"
 #include "mesh/extract_mesh.h"
+#include "mesh/mesh_metrics.h"
 #include "sim/analytic_dataset.h"
 #include "test_utils.h"
 
@@ -73,8 +79,9 @@ TEST(BlockAllocation, TableAndPoolGrowWithoutDroppingBlocks) {
 
 TEST(TsdfIntegration, DeviceMatchesReferenceOnAnalyticScene) {
   const auto dataset = analyticDataset(12);
-  MapConfig config;
-  config.weight_mode = WeightMode::kInverseDepthSquared;
+  MapConfig config;  // the defaults (1/z^2 weight, point-to-plane) are covered by other tests
+  config.weight_mode = WeightMode::kConstant;
+  config.distance_mode = DistanceMode::kAlongRay;
   expectDeviceMatchesReference(fuseOnDevice(dataset, config, 12, 3),
                                fuseReference(dataset, config, 12, 3));
 }
@@ -102,21 +109,62 @@ TEST(TsdfIntegration, DeviceMatchesReferenceOnRedkitchen) {
                                fuseReference(*dataset, config, 20, 4));
 }
 
+/// Writes frames in the 7-Scenes layout (millimetre depth PNG, full-precision 4x4 pose text).
+void writeSevenScenes(const std::string& dir, const Dataset& dataset, std::size_t count) {
+  std::filesystem::create_directories(dir);
+  for (std::size_t i = 0; i < count; ++i) {
+    const RgbdFrame frame = dataset.load(i);
+    char base[64];
+    std::snprintf(base, sizeof(base), "/frame-%06zu", i);
+    writeDepthPng(dir + base + ".depth.png", frame.depth, 1000.0);
+    std::ofstream pose(dir + base + ".pose.txt");
+    pose.precision(17);
+    pose << frame.T_W_C.matrix() << "\n";
+  }
+  const CameraIntrinsics k = dataset.intrinsics();
+  std::ofstream camera(dir + "/camera.yaml");
+  camera << "width: " << k.width_px << "\nheight: " << k.height_px << "\nfx: " << k.fx_px
+         << "\nfy: " << k.fy_px << "\ncx: " << k.cx_px << "\ncy: " << k.cy_px
+         << "\ndepth_scale: 1000\n";
+}
+
 TEST(TsdfIntegration, TumAndSevenScenesReadersGiveTheSameMap) {
+  // The same frames written in both layouts (millimetre depth in both) fuse to the same map.
+  const auto source = analyticDataset(6);
+  const std::string root = std::filesystem::temp_directory_path() / "strata_readers_same_map";
+  std::filesystem::remove_all(root);
+  std::vector<RgbdFrame> frames;
+  for (std::size_t i = 0; i < source.size(); ++i) {
+    frames.push_back(source.load(i));
+    frames.back().color = ColorImage();
+  }
+  writeTumDataset(root + "/tum", source.intrinsics(), frames, 1000.0);
+  writeSevenScenes(root + "/7scenes", source, source.size());
+  MapConfig config;
+  const TsdfMap a = fuseOnDevice(*openDataset(root + "/tum"), config, 6);
+  const TsdfMap b = fuseOnDevice(*openDataset(root + "/7scenes"), config, 6);
+  std::filesystem::remove_all(root);
+  // TUM stores the pose as a quaternion with 9 decimals, 7-Scenes as a matrix: rounding only.
+  const test::MapDifference diff = compareMaps(a, b, 1e-5f, 1e-4f);
+  EXPECT_GT(diff.updated_voxels, 10000u);
+  EXPECT_EQ(diff.blocks_only_in_a + diff.blocks_only_in_b, 0u);
+  EXPECT_LE(diff.distanceMismatchShare(), 1e-4) << "max " << diff.max_distance_difference_m;
+  EXPECT_LE(diff.weightMismatchShare(), 1e-4);
+}
+
+TEST(TsdfIntegration, RedkitchenReadersAgreeWithinTheirPoseFiles) {
+  // NOTE: the shared redkitchen groundtruth.txt quaternions differ from its 7-Scenes matrices by
+  // up to 0.42 degrees (lossy conversion of slightly non-orthonormal matrices), so the two maps
+  // cannot be identical; their surfaces must still agree to well under a voxel on average.
   STRATA_REQUIRE_DATA("redkitchen", path);
   DatasetOptions tum;
   tum.format = "tum";
   DatasetOptions seven;
   seven.format = "7scenes";
   MapConfig config;
-  const TsdfMap a = fuseOnDevice(*openDataset(path, tum), config, 30, 3);
-  const TsdfMap b = fuseOnDevice(*openDataset(path, seven), config, 30, 3);
-  // The TUM file stores quaternions with 7 decimals, 7-Scenes full matrices: the poses agree to
-  // ~1e-7, so the maps must agree to far below a millimetre everywhere.
-  const test::MapDifference diff = compareMaps(a, b, 1e-4f, 1e-3f);
-  EXPECT_EQ(diff.blocks_only_in_a + diff.blocks_only_in_b, 0u);
-  EXPECT_LE(diff.distanceMismatchShare(), 1e-4) << "max " << diff.max_distance_difference_m;
-  EXPECT_LE(diff.weightMismatchShare(), 1e-4);
+  const Mesh a = extractMesh(fuseOnDevice(*openDataset(path, tum), config, 30, 3));
+  const Mesh b = extractMesh(fuseOnDevice(*openDataset(path, seven), config, 30, 3));
+  EXPECT_LE(meshChamferDistance(a, b), 0.5 * config.voxel_size_m);
 }
 
 TEST(TsdfIntegration, BadFrameIsRefusedAndTheMapKept) {

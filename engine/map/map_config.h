@@ -30,7 +30,8 @@ struct MapConfig {
   /// Depth samples outside [min_depth_m, max_depth_m] are ignored (sensor's reliable range).
   float min_depth_m = 0.1f;
   float max_depth_m = 5.0f;
-  WeightMode weight_mode = WeightMode::kConstant;
+  /// 1/z^2 by default: structured-light depth noise grows with z^2, so near samples deserve more.
+  WeightMode weight_mode = WeightMode::kInverseDepthSquared;
   DistanceMode distance_mode = DistanceMode::kPointToPlane;
   /// Depth normals are invalid where a neighbour pixel differs by more than this share of the
   /// depth (a discontinuity): smaller keeps silhouettes sharp, larger accepts steeper planes.

@@ -16,7 +16,7 @@ struct FuseOptions {
   std::string dataset;  // "" or "analytic": the built-in analytic scene
   MapConfig map;
   float truncation_m = 0.0f;  // 0: map.truncation_voxels applies
-  std::string weight = "constant";
+  std::string weight = "inv-z2";
   std::string distance = "point-to-plane";
   int frames = 0;             // 0: all
   int stride = 1;
