@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Installs every build, test and run dependency of Strata from Debian 12 packages.
+set -euo pipefail
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+PACKAGES=(
+  cmake ninja-build g++ pkg-config ccache git
+  libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools
+  libeigen3-dev libopencv-dev libyaml-cpp-dev libcli11-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+)
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ "${#missing[@]}" -gt 0 ]; then
+  echo "strata: installing ${missing[*]}" >&2
+  $SUDO apt-get update
+  $SUDO apt-get install -y --no-install-recommends "${missing[@]}"
+else
+  echo "strata: all Debian dependencies already installed" >&2
+fi

@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# README command 1: install dependencies, build in Release, run the main job. With no argument it
+# fuses the built-in analytic scene; with arguments they go to `strata` (e.g. `fuse DIR --mesh m.ply`).
+set -euo pipefail
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+"$ROOT/scripts/install-deps.sh"
+"$ROOT/scripts/build.sh" -DSTRATA_BUILD_TESTS=OFF
+"$ROOT/build/bin/strata" "$@"

@@ -1,0 +1,9 @@
+#!/usr/bin/env bash
+# README command 2: install dependencies, build in Release with warnings as errors, run every test
+# on lavapipe with the Vulkan validation layer on. Tests needing ../shared/data skip without it.
+set -euo pipefail
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+"$ROOT/scripts/install-deps.sh"
+"$ROOT/scripts/build.sh" -DSTRATA_BUILD_TESTS=ON -DSTRATA_WERROR=ON
+cd "$ROOT/build"
+ctest --output-on-failure -j 2 --timeout 900
