@@ -29,6 +29,7 @@ class DeviceTsdfMap {
 
   vk::Buffer& hashEntries() { return entries_; }
   vk::Buffer& counters() { return counters_; }
+  vk::Buffer& pool() { return pool_; }
 
   /// Record that the device handed out `block_count` slots. Grows the pool (device-side copy) when
   /// they exceed capacity; when the device cannot hold them, removes the blocks that have no slot

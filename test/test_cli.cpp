@@ -1,0 +1,106 @@
+// `strata fuse` on bad input: a clear error naming the problem, a non-zero exit, and nothing that
+// was fused before the bad frame is lost (the map file holds it).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "apps/fuse_command.h"
+#include "io/image_io.h"
+#include "io/tum_writer.h"
+#include "map/map_file.h"
+#include "sim/analytic_dataset.h"
+
+namespace strata {
+namespace {
+
+namespace fs = std::filesystem;
+
+class FuseCliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("strata_cli_" + std::string(::testing::UnitTest::GetInstance()
+                                            ->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    sim::AnalyticDatasetConfig config;
+    config.frame_count = 4;
+    config.render_color = false;
+    const sim::AnalyticDataset source(config);
+    for (std::size_t i = 0; i < source.size(); ++i) frames_.push_back(source.load(i));
+    intrinsics_ = source.intrinsics();
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string writeDataset(const std::string& name) {
+    const std::string path = (dir_ / name).string();
+    writeTumDataset(path, intrinsics_, frames_);
+    return path;
+  }
+
+  int fuse(const std::string& dataset, const std::string& map_name = "map.strata") {
+    apps::FuseOptions options;
+    options.dataset = dataset;
+    options.map_path = (dir_ / map_name).string();
+    options.quiet = true;
+    testing::internal::CaptureStderr();
+    const int code = apps::runFuse(options);
+    stderr_ = testing::internal::GetCapturedStderr();
+    return code;
+  }
+
+  fs::path dir_;
+  std::vector<RgbdFrame> frames_;
+  CameraIntrinsics intrinsics_;
+  std::string stderr_;
+};
+
+TEST_F(FuseCliTest, GoodDatasetFusesAndExitsZero) {
+  EXPECT_EQ(fuse(writeDataset("good")), 0) << stderr_;
+  EXPECT_GT(loadMap((dir_ / "map.strata").string()).blockCount(), 100u);
+}
+
+TEST_F(FuseCliTest, MissingAndEmptyDatasetsAreRefused) {
+  EXPECT_NE(fuse((dir_ / "does_not_exist").string()), 0);
+  EXPECT_NE(stderr_.find("does_not_exist"), std::string::npos) << stderr_;
+  fs::create_directories(dir_ / "empty");
+  EXPECT_NE(fuse((dir_ / "empty").string()), 0);
+  EXPECT_NE(stderr_.find("empty"), std::string::npos) << stderr_;
+  EXPECT_FALSE(fs::exists(dir_ / "map.strata"));
+}
+
+TEST_F(FuseCliTest, ZeroIntrinsicsAreRefused) {
+  const std::string path = writeDataset("zero_fx");
+  std::ofstream(path + "/camera.yaml") << "width: 640\nheight: 480\nfx: 0\nfy: 525\ncx: 319.5\n"
+                                       << "cy: 239.5\ndepth_scale: 5000\n";
+  EXPECT_NE(fuse(path), 0);
+  EXPECT_NE(stderr_.find("fx"), std::string::npos) << stderr_;
+}
+
+TEST_F(FuseCliTest, BadFrameMidwayStopsButKeepsWhatWasFused) {
+  const std::string path = writeDataset("bad_frame");
+  // Frame 2's depth image is replaced by one of the wrong size.
+  writeDepthPng(path + "/depth/000002.png", DepthImage(320, 240, 1.0f), 5000.0);
+  EXPECT_NE(fuse(path, "partial.strata"), 0);
+  EXPECT_NE(stderr_.find("000002.png"), std::string::npos) << stderr_;
+  EXPECT_NE(stderr_.find("keeping the 2 frames"), std::string::npos) << stderr_;
+  const TsdfMap partial = loadMap((dir_ / "partial.strata").string());
+  EXPECT_GT(partial.blockCount(), 100u);
+}
+
+TEST_F(FuseCliTest, MissingFileAndNonFinitePoseAreRefused) {
+  const std::string missing = writeDataset("missing_file");
+  fs::remove(missing + "/depth/000001.png");
+  EXPECT_NE(fuse(missing), 0);
+  EXPECT_NE(stderr_.find("000001.png"), std::string::npos) << stderr_;
+
+  const std::string nan_pose = writeDataset("nan_pose");
+  std::ofstream(nan_pose + "/groundtruth.txt")
+      << "# timestamp tx ty tz qx qy qz qw\n0.000000 nan 0 0 0 0 0 1\n";
+  EXPECT_NE(fuse(nan_pose), 0);
+  EXPECT_FALSE(stderr_.empty());
+}
+
+}  // namespace
+}  // namespace strata
