@@ -209,3 +209,42 @@ TEST(TsdfIntegration, NanAndOutOfRangeDepthAreIgnored) {
 
 }  // namespace
 }  // namespace strata
+
+namespace strata {
+namespace {
+
+TEST(TsdfIntegration, FullPoolStopsWithAClearErrorAndKeepsTheMap) {
+  const auto dataset = analyticDataset(60);
+  MapConfig config;
+  config.max_block_capacity = 1200;  // frame 0 needs about 1000 blocks, frames 0 + 40 more
+  DeviceFusion fusion(test::sharedContext(), config);
+  fusion.integrate(dataset.load(0), dataset.intrinsics());
+  TsdfMap before(config);
+  fusion.map().download(before);
+  try {
+    fusion.integrate(dataset.load(40), dataset.intrinsics());
+    FAIL() << "the frame should not fit in 1200 blocks";
+  } catch (const DeviceError& e) {
+    EXPECT_NE(std::string(e.what()).find("blocks were asked for"), std::string::npos) << e.what();
+  }
+  TsdfMap after(config);
+  fusion.map().download(after);
+  // Every voxel fused before is intact; blocks reserved by the refused frame stay unobserved.
+  for (const auto& [index, block] : before.blocks()) {
+    const TsdfBlock* kept = after.findBlock(index);
+    ASSERT_NE(kept, nullptr);
+    for (int i = 0; i < kVoxelsPerBlock; ++i) {
+      ASSERT_EQ((*kept)[i].tsdf_m, block[i].tsdf_m);
+      ASSERT_EQ((*kept)[i].weight, block[i].weight);
+    }
+  }
+  for (const auto& [index, block] : after.blocks()) {
+    if (before.findBlock(index) != nullptr) continue;
+    for (const TsdfVoxel& voxel : block) ASSERT_EQ(voxel.weight, 0.0f);
+  }
+  // And fusion goes on for frames that fit.
+  EXPECT_NO_THROW(fusion.integrate(dataset.load(0), dataset.intrinsics()));
+}
+
+}  // namespace
+}  // namespace strata

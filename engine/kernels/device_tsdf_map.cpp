@@ -46,7 +46,9 @@ DeviceTsdfMap::DeviceTsdfMap(vk::Context& context, const MapConfig& config)
     : context_(context), config_(config) {
   config_.validate();
   writeTable({}, config_.initial_hash_capacity);
-  growPool(config_.initial_block_capacity);
+  growPool(config_.max_block_capacity > 0
+               ? std::min(config_.initial_block_capacity, config_.max_block_capacity)
+               : config_.initial_block_capacity);
   writeCounters();
 }
 
@@ -109,12 +111,17 @@ void DeviceTsdfMap::maintainLoadFactor() {
 }
 
 void DeviceTsdfMap::growPool(std::uint32_t min_blocks) {
-  const std::uint64_t max_blocks = context_.limits().max_memory_allocation_bytes / kBlockBytes;
+  const std::uint64_t device_max = context_.limits().max_memory_allocation_bytes / kBlockBytes;
+  const std::uint64_t max_blocks =
+      config_.max_block_capacity > 0 ? std::min<std::uint64_t>(device_max, config_.max_block_capacity)
+                                     : device_max;
   if (min_blocks > max_blocks) {
     std::ostringstream msg;
-    msg << "TSDF pool full: " << min_blocks << " blocks were asked for but one allocation on "
-        << context_.deviceName() << " holds at most " << max_blocks << " blocks ("
-        << (max_blocks * kBlockBytes >> 20) << " MiB); use a larger voxel size or fewer frames";
+    msg << "TSDF pool full: " << min_blocks << " blocks were asked for but "
+        << (max_blocks < device_max ? "the map's block budget (max_block_capacity)"
+                                    : "one allocation on " + context_.deviceName())
+        << " holds at most " << max_blocks << " blocks (" << (max_blocks * kBlockBytes >> 20)
+        << " MiB); use a larger voxel size, a shorter depth range or fewer frames";
     throw DeviceError(msg.str());
   }
   const std::uint64_t wanted = std::max<std::uint64_t>(

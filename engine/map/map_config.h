@@ -43,6 +43,9 @@ struct MapConfig {
   /// Initial capacities; both grow on demand (pool by reallocation, hash by rehash).
   std::uint32_t initial_block_capacity = 8192;
   std::uint32_t initial_hash_capacity = 1u << 16;  // power of two
+  /// Device memory budget in blocks (6 KiB each); 0 = as many as one allocation on the device holds.
+  /// Fusion stops with an error naming the blocks asked for when a frame needs more.
+  std::uint32_t max_block_capacity = 0;
 
   float truncationDistance() const { return truncation_voxels * voxel_size_m; }
   float blockSize() const;

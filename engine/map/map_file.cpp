@@ -70,8 +70,9 @@ void putConfig(ByteWriter& w, const MapConfig& c) {
   w.put(c.initial_hash_capacity);
   w.put(static_cast<std::uint32_t>(c.distance_mode));
   w.put(c.normal_max_relative_jump);
+  w.put(c.max_block_capacity);
 }
-constexpr std::uint32_t kConfigBytes = 48;
+constexpr std::uint32_t kConfigBytes = 52;
 
 MapConfig getConfig(ByteReader& r) {
   MapConfig c;
@@ -87,6 +88,7 @@ MapConfig getConfig(ByteReader& r) {
   c.initial_hash_capacity = r.get<std::uint32_t>("initial_hash_capacity");
   c.distance_mode = static_cast<DistanceMode>(r.get<std::uint32_t>("distance_mode"));
   c.normal_max_relative_jump = r.get<float>("normal_max_relative_jump");
+  c.max_block_capacity = r.get<std::uint32_t>("max_block_capacity");
   return c;
 }
 
