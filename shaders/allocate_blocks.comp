@@ -14,8 +14,8 @@
 
 layout(local_size_x = 16, local_size_y = 16) in;
 
-layout(std430, binding = 0) coherent buffer Entries { HashEntry entries[]; };
-layout(std430, binding = 1) coherent buffer Counters { MapCounters counters; };
+layout(std430, binding = 0) buffer Entries { HashEntry entries[]; };
+layout(std430, binding = 1) buffer Counters { MapCounters counters; };
 layout(std430, binding = 2) writeonly buffer Touched { uint touched_entries[]; };
 layout(std430, binding = 3) readonly buffer Depth { float depth_m[]; };
 

@@ -1,0 +1,19 @@
+// strata-bench: benchmarks of the Strata engine, one subcommand each, JSON report on stdout and
+// progress on stderr.
+#include <CLI/CLI.hpp>
+
+#include "fuse_command.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"strata-bench: Strata benchmarks (JSON on stdout, progress on stderr)"};
+  app.require_subcommand(1);
+  strata::bench::FuseBenchOptions fuse_options;
+  CLI::App* fuse = strata::bench::addFuseCommand(app, fuse_options);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  if (fuse->parsed()) return strata::bench::runFuseBench(fuse_options);
+  return 2;
+}
