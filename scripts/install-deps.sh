@@ -8,7 +8,7 @@ PACKAGES=(
   cmake ninja-build g++ pkg-config ccache git
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools
   libeigen3-dev libopencv-dev libyaml-cpp-dev libcli11-dev
-  libgtest-dev libgmock-dev libbenchmark-dev
+  libgtest-dev libgmock-dev libbenchmark-dev libembree-dev
 )
 missing=()
 for p in "${PACKAGES[@]}"; do
