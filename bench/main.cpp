@@ -3,17 +3,21 @@
 #include <CLI/CLI.hpp>
 
 #include "fuse_command.h"
+#include "sim_command.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"strata-bench: Strata benchmarks (JSON on stdout, progress on stderr)"};
   app.require_subcommand(1);
   strata::bench::FuseBenchOptions fuse_options;
   CLI::App* fuse = strata::bench::addFuseCommand(app, fuse_options);
+  strata::bench::SimBenchOptions sim_options;
+  CLI::App* sim = strata::bench::addSimCommand(app, sim_options);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
   if (fuse->parsed()) return strata::bench::runFuseBench(fuse_options);
+  if (sim->parsed()) return strata::bench::runSimBench(sim_options);
   return 2;
 }

@@ -70,7 +70,7 @@ TEST(AnalyticScene, RejectsDegeneratePrimitives) {
 TEST(AnalyticScene, CastRaySeesSolidsFromOutsideOnly) {
   AnalyticScene scene = floorOnly();
   scene.add(Sphere{Eigen::Vector3d(0, 0, 1), 0.5, {255, 0, 0}});
-  RayHit hit;
+  AnalyticHit hit;
   ASSERT_TRUE(scene.castRay(Eigen::Vector3d(0, 0, 3), -Eigen::Vector3d::UnitZ(), 10.0, &hit));
   EXPECT_NEAR(hit.t_m, 1.5, 1e-12);
   EXPECT_NEAR((hit.normal_W - Eigen::Vector3d::UnitZ()).norm(), 0.0, 1e-12);
@@ -136,7 +136,7 @@ TEST(AnalyticScene, MostSurfacesSeenAtModerateAngles) {
     for (int v = 0; v < k.height_px; v += 8) {
       for (int u = 0; u < k.width_px; u += 8) {
         const Eigen::Vector3d dir_W = (T_W_C.linear() * backProject(k, u, v, 1.0)).normalized();
-        RayHit hit;
+        AnalyticHit hit;
         if (!scene.castRay(T_W_C.translation(), dir_W, 10.0, &hit)) continue;
         ++hits;
         if (-dir_W.dot(hit.normal_W) > std::cos(60.0 * kPi / 180.0)) ++moderate;

@@ -1,12 +1,13 @@
 // strata: the command-line entry point. With no subcommand it runs the main job on the built-in
-// default data: fuse the analytic scene and write mesh, map and a rendering to strata_out/.
+// default data: the multi-session demo on the shipped single-room world (strata_out/).
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
-#include <filesystem>
 
+#include "apps/demo_command.h"
 #include "apps/fuse_command.h"
 #include "apps/mesh_command.h"
+#include "apps/sim_command.h"
 #include "core/error.h"
 #include "vk/vk.h"
 
@@ -25,15 +26,9 @@ int listDevices() {
 }
 
 int runDefault() {
-  const std::string out_dir = "strata_out";
-  std::filesystem::create_directories(out_dir);
-  strata::apps::FuseOptions options;
-  options.mesh_path = out_dir + "/analytic_mesh.ply";
-  options.map_path = out_dir + "/analytic_map.strata";
-  options.render_path = out_dir + "/analytic_view.png";
-  std::printf("strata: no command given; fusing the built-in analytic scene into %s/\n",
-              out_dir.c_str());
-  return strata::apps::runFuse(options);
+  std::printf("strata: no command given; running the multi-session demo on the shipped room "
+              "(see `strata --help` for fuse, sim, demo, mesh, devices)\n");
+  return strata::apps::runDemo(strata::apps::DemoOptions{});
 }
 
 }  // namespace
@@ -45,6 +40,10 @@ int main(int argc, char** argv) {
   CLI::App* fuse = strata::apps::addFuseCommand(app, fuse_options);
   strata::apps::MeshOptions mesh_options;
   CLI::App* mesh = strata::apps::addMeshCommand(app, mesh_options);
+  strata::apps::SimOptions sim_options;
+  CLI::App* sim = strata::apps::addSimCommand(app, sim_options);
+  strata::apps::DemoOptions demo_options;
+  CLI::App* demo = strata::apps::addDemoCommand(app, demo_options);
   CLI::App* devices = app.add_subcommand("devices", "List the Vulkan devices");
   try {
     app.parse(argc, argv);
@@ -53,6 +52,8 @@ int main(int argc, char** argv) {
   }
   if (fuse->parsed()) return strata::apps::runFuse(fuse_options);
   if (mesh->parsed()) return strata::apps::runMesh(mesh_options);
+  if (sim->parsed()) return strata::apps::runSim(sim_options);
+  if (demo->parsed()) return strata::apps::runDemo(demo_options);
   if (devices->parsed()) return listDevices();
   return runDefault();
 }

@@ -8,6 +8,17 @@ namespace strata::eval {
 
 TsdfAccuracy evaluateTsdf(const TsdfMap& map, const sim::AnalyticScene& scene, float band_m,
                           float min_weight) {
+  return evaluateTsdf(
+      map, [&](const Eigen::Vector3d& p) { return scene.signedDistance(p); }, band_m, min_weight);
+}
+
+MeshAccuracy evaluateMesh(const Mesh& mesh, const sim::AnalyticScene& scene, float tolerance_m) {
+  return evaluateMesh(
+      mesh, [&](const Eigen::Vector3d& p) { return scene.signedDistance(p); }, tolerance_m);
+}
+
+TsdfAccuracy evaluateTsdf(const TsdfMap& map, const TrueSdf& truth, float band_m,
+                          float min_weight) {
   TsdfAccuracy result;
   double sum = 0.0;
   const float voxel_size_m = map.config().voxel_size_m;
@@ -19,7 +30,7 @@ TsdfAccuracy evaluateTsdf(const TsdfMap& map, const sim::AnalyticScene& scene, f
           if (voxel.weight < min_weight) continue;
           const Eigen::Vector3f p_W =
               voxelCenter(index * kBlockEdge + Eigen::Vector3i(x, y, z), voxel_size_m);
-          const double truth_m = scene.signedDistance(Eigen::Vector3d(p_W.cast<double>()));
+          const double truth_m = truth(p_W.cast<double>());
           if (std::abs(truth_m) > band_m) continue;
           const double error = std::abs(voxel.tsdf_m - truth_m);
           sum += error;
@@ -33,7 +44,7 @@ TsdfAccuracy evaluateTsdf(const TsdfMap& map, const sim::AnalyticScene& scene, f
   return result;
 }
 
-MeshAccuracy evaluateMesh(const Mesh& mesh, const sim::AnalyticScene& scene, float tolerance_m) {
+MeshAccuracy evaluateMesh(const Mesh& mesh, const TrueSdf& truth, float tolerance_m) {
   MeshAccuracy result;
   result.vertices = mesh.vertices.size();
   if (mesh.vertices.empty()) return result;
@@ -42,7 +53,7 @@ MeshAccuracy evaluateMesh(const Mesh& mesh, const sim::AnalyticScene& scene, flo
   double sum = 0.0;
   std::size_t within = 0;
   for (const Eigen::Vector3f& v : mesh.vertices) {
-    const double d = std::abs(scene.signedDistance(Eigen::Vector3d(v.cast<double>())));
+    const double d = std::abs(truth(v.cast<double>()));
     distances.push_back(d);
     sum += d;
     if (d <= tolerance_m) ++within;

@@ -1,6 +1,7 @@
 #pragma once
 // Accuracy of a fused map and its mesh against an analytic scene's exact geometry.
 #include <cstddef>
+#include <functional>
 
 #include "map/tsdf_map.h"
 #include "mesh/mesh.h"
@@ -14,7 +15,12 @@ struct TsdfAccuracy {
   double max_abs_error_m = 0.0;
 };
 
+/// Exact signed distance of the true scene at a world point.
+using TrueSdf = std::function<double(const Eigen::Vector3d&)>;
+
 /// Compares every observed voxel (weight >= min_weight) whose true |sdf| <= band_m.
+TsdfAccuracy evaluateTsdf(const TsdfMap& map, const TrueSdf& truth, float band_m,
+                          float min_weight = 1e-3f);
 TsdfAccuracy evaluateTsdf(const TsdfMap& map, const sim::AnalyticScene& scene, float band_m,
                           float min_weight = 1e-3f);
 
@@ -25,6 +31,7 @@ struct MeshAccuracy {
   double fraction_within = 0.0;    // share of vertices with |sdf| <= tolerance
 };
 
+MeshAccuracy evaluateMesh(const Mesh& mesh, const TrueSdf& truth, float tolerance_m);
 MeshAccuracy evaluateMesh(const Mesh& mesh, const sim::AnalyticScene& scene, float tolerance_m);
 
 }  // namespace strata::eval

@@ -6,6 +6,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 
 namespace strata {
@@ -35,14 +36,19 @@ cv::Mat readImage(const std::string& path, int flags, const char* what) {
   return image;
 }
 
+/// Encodes by the file's extension, then writes atomically (a reader never sees half a PNG).
 void writeImage(const std::string& path, const cv::Mat& image) {
+  const std::size_t dot = path.find_last_of('.');
+  const std::string extension = dot == std::string::npos ? ".png" : path.substr(dot);
+  std::vector<std::uint8_t> encoded;
   bool ok = false;
   try {
-    ok = cv::imwrite(path, image);
+    ok = cv::imencode(extension, image, encoded);
   } catch (const cv::Exception& e) {
-    throw Error(path + ": cannot write image: " + e.what());
+    throw Error(path + ": cannot encode image: " + e.what());
   }
-  if (!ok) throw Error(path + ": cannot write image (folder missing or not writable?)");
+  if (!ok) throw Error(path + ": cannot encode image as '" + extension + "'");
+  writeFileAtomically(path, encoded);
 }
 
 }  // namespace

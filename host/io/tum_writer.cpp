@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "io/image_io.h"
 #include "io/tum_format.h"
@@ -15,78 +16,81 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::ofstream openText(const fs::path& path) {
-  std::ofstream out(path);
-  if (!out) throw Error(path.string() + ": cannot create file");
-  out << "# written by strata::writeTumDataset\n";
-  return out;
-}
-
 std::string timestampText(double timestamp_s) {
   char text[64];
   std::snprintf(text, sizeof(text), "%.6f", timestamp_s);
   return text;
 }
 
-void checkFrames(const CameraIntrinsics& intrinsics, const std::vector<RgbdFrame>& frames) {
-  intrinsics.validate();
-  for (std::size_t i = 0; i < frames.size(); ++i) {
-    validateFrame(frames[i], intrinsics);
-    // NOTE: 1 us, the resolution of the written timestamps.
-    if (i > 0 && !(frames[i].timestamp_s >= frames[i - 1].timestamp_s + 1e-6)) {
-      std::ostringstream msg;
-      msg << "writeTumDataset: frame " << i << " timestamp " << frames[i].timestamp_s
-          << " s does not increase after " << frames[i - 1].timestamp_s << " s";
-      throw InputError(msg.str());
-    }
-  }
-}
-
-void writeCameraYaml(const fs::path& path, const CameraIntrinsics& k, double depth_scale) {
-  std::ofstream out(path);
-  if (!out) throw Error(path.string() + ": cannot create file");
+std::string cameraYaml(const CameraIntrinsics& k, double depth_scale) {
+  std::ostringstream out;
   out.precision(9);
   out << "# written by strata::writeTumDataset\n"
       << "width: " << k.width_px << "\nheight: " << k.height_px << "\nfx: " << k.fx_px
       << "\nfy: " << k.fy_px << "\ncx: " << k.cx_px << "\ncy: " << k.cy_px
       << "\ndepth_scale: " << depth_scale << "   # PNG value per metre\ndepth_invalid: [0]\n";
+  return out.str();
+}
+
+void writeText(const fs::path& path, const std::string& text) {
+  writeFileAtomically(path.string(), std::vector<std::uint8_t>(text.begin(), text.end()));
 }
 
 }  // namespace
 
-void writeTumDataset(const std::string& dir, const CameraIntrinsics& intrinsics,
-                     const std::vector<RgbdFrame>& frames, double depth_scale) {
+TumWriter::TumWriter(const std::string& dir, const CameraIntrinsics& intrinsics,
+                     double depth_scale)
+    : dir_(dir), intrinsics_(intrinsics), depth_scale_(depth_scale) {
   if (!std::isfinite(depth_scale) || depth_scale <= 0.0) {
     throw InputError("writeTumDataset: depth_scale must be finite and positive");
   }
-  checkFrames(intrinsics, frames);
-  const fs::path root(dir);
+  intrinsics_.validate();
   std::error_code ec;
-  fs::create_directories(root / "depth", ec);
-  fs::create_directories(root / "rgb", ec);
+  fs::create_directories(fs::path(dir) / "depth", ec);
+  fs::create_directories(fs::path(dir) / "rgb", ec);
   if (ec) throw Error(dir + ": cannot create folder: " + ec.message());
+  const std::string header = "# written by strata::writeTumDataset\n";
+  depth_list_ = rgb_list_ = header;
+  poses_ = header + "# timestamp tx ty tz qx qy qz qw (camera-to-world)\n";
+}
 
-  std::ofstream depth_list = openText(root / "depth.txt");
-  std::ofstream rgb_list = openText(root / "rgb.txt");
-  std::ofstream poses = openText(root / "groundtruth.txt");
-  poses << "# timestamp tx ty tz qx qy qz qw (camera-to-world)\n";
-  for (std::size_t i = 0; i < frames.size(); ++i) {
-    char stem[32];
-    std::snprintf(stem, sizeof(stem), "%06zu.png", i);
-    const std::string stamp = timestampText(frames[i].timestamp_s);
-    writeDepthPng((root / "depth" / stem).string(), frames[i].depth, depth_scale);
-    depth_list << stamp << " depth/" << stem << "\n";
-    if (!frames[i].color.empty()) {
-      writeColorPng((root / "rgb" / stem).string(), frames[i].color);
-      rgb_list << stamp << " rgb/" << stem << "\n";
-    }
-    poses << stamp << " " << tum::poseToTum(frames[i].T_W_C) << "\n";
+void TumWriter::add(const RgbdFrame& frame) {
+  validateFrame(frame, intrinsics_);
+  // NOTE: 1 us, the resolution of the written timestamps.
+  if (count_ > 0 && !(frame.timestamp_s >= last_timestamp_s_ + 1e-6)) {
+    std::ostringstream msg;
+    msg << "writeTumDataset: frame " << count_ << " timestamp " << frame.timestamp_s
+        << " s does not increase after " << last_timestamp_s_ << " s";
+    throw InputError(msg.str());
   }
-  writeCameraYaml(root / "camera.yaml", intrinsics, depth_scale);
-  depth_list.close();
-  rgb_list.close();
-  poses.close();
-  if (!depth_list || !rgb_list || !poses) throw Error(dir + ": error while writing the lists");
+  char stem[32];
+  std::snprintf(stem, sizeof(stem), "%06zu.png", count_);
+  const std::string stamp = timestampText(frame.timestamp_s);
+  const fs::path root(dir_);
+  writeDepthPng((root / "depth" / stem).string(), frame.depth, depth_scale_);
+  depth_list_ += stamp + " depth/" + stem + "\n";
+  if (!frame.color.empty()) {
+    writeColorPng((root / "rgb" / stem).string(), frame.color);
+    rgb_list_ += stamp + " rgb/" + stem + "\n";
+  }
+  poses_ += stamp + " " + tum::poseToTum(frame.T_W_C) + "\n";
+  last_timestamp_s_ = frame.timestamp_s;
+  ++count_;
+}
+
+void TumWriter::finish() {
+  const fs::path root(dir_);
+  writeText(root / "depth.txt", depth_list_);
+  writeText(root / "rgb.txt", rgb_list_);
+  writeText(root / "groundtruth.txt", poses_);
+  writeText(root / "camera.yaml", cameraYaml(intrinsics_, depth_scale_));
+}
+
+void writeTumDataset(const std::string& dir, const CameraIntrinsics& intrinsics,
+                     const std::vector<RgbdFrame>& frames, double depth_scale) {
+  TumWriter writer(dir, intrinsics, depth_scale);
+  for (const RgbdFrame& frame : frames) writer.add(frame);
+  writer.finish();
 }
 
 }  // namespace strata

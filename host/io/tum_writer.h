@@ -15,4 +15,25 @@ namespace strata {
 void writeTumDataset(const std::string& dir, const CameraIntrinsics& intrinsics,
                      const std::vector<RgbdFrame>& frames, double depth_scale = 5000.0);
 
+/// The same layout written one frame at a time (long recordings need not fit in memory). Images
+/// are written as they come; the lists and camera.yaml atomically by finish().
+class TumWriter {
+ public:
+  TumWriter(const std::string& dir, const CameraIntrinsics& intrinsics,
+            double depth_scale = 5000.0);
+  /// Validates and writes one frame; its T_W_C goes to groundtruth.txt.
+  void add(const RgbdFrame& frame);
+  /// Writes depth.txt, rgb.txt, groundtruth.txt and camera.yaml.
+  void finish();
+  std::size_t frameCount() const { return count_; }
+
+ private:
+  std::string dir_;
+  CameraIntrinsics intrinsics_;
+  double depth_scale_;
+  std::size_t count_ = 0;
+  double last_timestamp_s_ = 0.0;
+  std::string depth_list_, rgb_list_, poses_;
+};
+
 }  // namespace strata

@@ -14,7 +14,7 @@ namespace {
 const Eigen::Vector3d kLightDirection_W = Eigen::Vector3d(0.3, -0.4, 1.0).normalized();
 constexpr double kAmbient = 0.35;
 
-std::array<std::uint8_t, 3> shade(const RayHit& hit) {
+std::array<std::uint8_t, 3> shade(const AnalyticHit& hit) {
   const double lambert = std::max(0.0, hit.normal_W.dot(kLightDirection_W));
   const double factor = kAmbient + (1.0 - kAmbient) * lambert;
   std::array<std::uint8_t, 3> rgb{};
@@ -26,12 +26,12 @@ std::array<std::uint8_t, 3> shade(const RayHit& hit) {
 
 template <typename Primitive>
 void closestHit(const std::vector<Primitive>& primitives, const Eigen::Vector3d& origin_W,
-                const Eigen::Vector3d& dir_W, double* max_t_m, RayHit* best, bool* found) {
+                const Eigen::Vector3d& dir_W, double* max_t_m, AnalyticHit* best, bool* found) {
   for (const Primitive& primitive : primitives) {
     const std::optional<SurfaceHit> hit = intersect(primitive, origin_W, dir_W, *max_t_m);
     if (!hit) continue;
     *max_t_m = hit->t_m;
-    *best = RayHit{hit->t_m, hit->normal_W, primitive.albedo};
+    *best = AnalyticHit{hit->t_m, hit->normal_W, primitive.albedo};
     *found = true;
   }
 }
@@ -88,8 +88,8 @@ float AnalyticScene::signedDistance(const Eigen::Vector3f& p_W) const {
 }
 
 bool AnalyticScene::castRay(const Eigen::Vector3d& origin_W, const Eigen::Vector3d& unit_dir_W,
-                            double max_t_m, RayHit* hit) const {
-  RayHit best;
+                            double max_t_m, AnalyticHit* hit) const {
+  AnalyticHit best;
   bool found = false;
   closestHit(planes_, origin_W, unit_dir_W, &max_t_m, &best, &found);
   closestHit(boxes_, origin_W, unit_dir_W, &max_t_m, &best, &found);
@@ -113,7 +113,7 @@ void AnalyticScene::render(const CameraIntrinsics& intrinsics, const Eigen::Isom
     for (int u = 0; u < width; ++u) {
       const Eigen::Vector3d ray_C((u - cx) / fx, (v - cy) / fy, 1.0);
       const double length = ray_C.norm();  // metres along the ray per metre of depth
-      RayHit hit;
+      AnalyticHit hit;
       if (!castRay(origin_W, R_W_C * ray_C / length, max_depth_m * length, &hit)) continue;
       if (depth != nullptr) depth->at(u, v) = static_cast<float>(hit.t_m / length);
       if (color != nullptr) {

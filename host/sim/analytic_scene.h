@@ -18,7 +18,7 @@
 
 namespace strata::sim {
 
-struct RayHit {
+struct AnalyticHit {
   double t_m = 0.0;                                     // along the unit direction
   Eigen::Vector3d normal_W = Eigen::Vector3d::UnitZ();  // outward, unit
   Albedo albedo{0, 0, 0};
@@ -40,7 +40,7 @@ class AnalyticScene {
   /// First surface hit along origin + t * unit_dir with 0 < t <= max_t. Solids that contain the
   /// origin are not seen. `hit` may be null.
   bool castRay(const Eigen::Vector3d& origin_W, const Eigen::Vector3d& unit_dir_W, double max_t_m,
-               RayHit* hit) const;
+               AnalyticHit* hit) const;
 
   /// Depth = camera-frame z of the first hit along each pixel-centre ray (pixel (u, v) looks along
   /// ((u - cx) / fx, (v - cy) / fy, 1)), 0 on a miss or beyond max_depth_m.

@@ -1,0 +1,92 @@
+#include "sim_command.h"
+
+#include <CLI/CLI.hpp>
+
+#include <chrono>
+#include <cstdio>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "json.h"
+#include "machine_info.h"
+#include "sim/session/sim_session.h"
+#include "sim/world/world_paths.h"
+
+namespace strata::bench {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+// Frames rendered before timing: the first frame builds the shared Embree scenes.
+constexpr int kWarmupFrames = 2;
+
+Json benchWorld(const std::string& name, const SimBenchOptions& o) {
+  const auto world = std::make_shared<const sim::World>(sim::World::load(sim::findWorld(name)));
+  sim::SimSessionConfig config;
+  config.max_frames = o.frames + kWarmupFrames;
+  config.camera.noise.enabled = o.noise;
+  const auto build_start = Clock::now();
+  const sim::SimSessionDataset session(world, 0, config);
+  const double setup_s = std::chrono::duration<double>(Clock::now() - build_start).count();
+  for (int i = 0; i < kWarmupFrames; ++i) session.render(static_cast<std::size_t>(i));
+  std::size_t valid_pixels = 0;
+  const auto start = Clock::now();
+  for (std::size_t i = kWarmupFrames; i < session.size(); ++i) {
+    const sim::SimulatedFrame frame = session.render(i);
+    for (float d : frame.depth.depth_m) valid_pixels += d > 0.0f ? 1 : 0;
+  }
+  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  const double frames = static_cast<double>(session.size() - kWarmupFrames);
+  std::fprintf(stderr, "strata-bench sim: %s %.1f frames/s\n", name.c_str(), frames / seconds);
+  if (valid_pixels == 0) throw Error("world '" + name + "' rendered no valid depth at all");
+  return Json::object()
+      .set("world", name)
+      .set("objects", world->objectCount())
+      .set("frames", static_cast<int>(frames))
+      .set("resolution", std::to_string(config.camera.intrinsics.width_px) + "x" +
+                             std::to_string(config.camera.intrinsics.height_px))
+      .set("noise", o.noise)
+      .set("session_setup_s", setup_s)
+      .set("frames_per_s", frames / seconds)
+      .set("ms_per_frame", 1000.0 * seconds / frames)
+      .set("valid_depth_share", static_cast<double>(valid_pixels) /
+                                    (frames * config.camera.intrinsics.width_px *
+                                     config.camera.intrinsics.height_px));
+}
+
+}  // namespace
+
+CLI::App* addSimCommand(CLI::App& app, SimBenchOptions& o) {
+  CLI::App* sim = app.add_subcommand("sim", "Simulated RGB-D rendering speed per shipped world");
+  sim->add_option("--worlds", o.worlds, "World names or files")->delimiter(',');
+  sim->add_option("--frames", o.frames, "Frames timed per world")->capture_default_str();
+  sim->add_flag("!--no-noise", o.noise, "Render exact depth");
+  sim->add_option("--out", o.out_path, "Also write the JSON here");
+  return sim;
+}
+
+int runSimBench(const SimBenchOptions& o) {
+  try {
+    const std::string load_at_start = loadAverage();
+    Json results = Json::array();
+    for (const std::string& name : o.worlds) results.push(benchWorld(name, o));
+    Json report = Json::object()
+                      .set("benchmark", "sim")
+                      .set("machine", machineInfo("host CPU (Embree ray casting)", load_at_start))
+                      .set("warmup_frames_excluded", kWarmupFrames)
+                      .set("results", results);
+    const std::string text = report.dump() + "\n";
+    std::printf("%s", text.c_str());
+    if (!o.out_path.empty()) {
+      writeFileAtomically(o.out_path, std::vector<std::uint8_t>(text.begin(), text.end()));
+    }
+    return 0;
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "strata-bench sim: input error: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "strata-bench sim: error: %s\n", e.what());
+    return 1;
+  }
+}
+
+}  // namespace strata::bench

@@ -1,0 +1,38 @@
+#pragma once
+// What the multi-session demo measured, as JSON and as a closing paragraph.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "eval/accuracy.h"
+
+namespace strata::apps {
+
+struct SessionResult {
+  int session = 0;
+  std::size_t frames = 0;
+  double render_s = 0.0;
+  double fuse_wall_ms = 0.0;    // summed over frames
+  double fuse_device_ms = 0.0;  // summed over frames
+  std::size_t blocks = 0;
+  std::size_t mesh_vertices = 0;
+  eval::TsdfAccuracy tsdf;
+  eval::MeshAccuracy mesh;
+  std::vector<int> changed_ids;  // objects changed since the previous session
+};
+
+struct DemoReport {
+  std::string world;
+  std::uint64_t seed = 0;
+  std::string map_config;
+  std::string device;
+  std::vector<SessionResult> sessions;
+  double total_s = 0.0;
+};
+
+/// Writes the report as JSON, atomically.
+void writeDemoReport(const DemoReport& report, const std::string& path);
+/// One paragraph for the terminal.
+std::string summarizeDemo(const DemoReport& report, const std::string& out_dir);
+
+}  // namespace strata::apps

@@ -1,0 +1,17 @@
+#pragma once
+// Shared by `strata sim` and `strata demo`: the world and session settings from the options.
+#include <memory>
+#include <string>
+
+#include "sim/session/sim_session.h"
+#include "sim/world/world.h"
+
+namespace strata::apps {
+
+/// Loads `path` ("" = the shipped room) with optional seed / session count overrides (0 = file's).
+std::shared_ptr<const sim::World> loadWorld(const std::string& path, std::uint64_t seed,
+                                            int sessions);
+
+sim::SimSessionConfig sessionConfig(double rate_hz, int max_frames, bool noise, bool drift);
+
+}  // namespace strata::apps

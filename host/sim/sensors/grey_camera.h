@@ -1,0 +1,56 @@
+#pragma once
+// Simulated grey (luminance) camera, mono or stereo, for visual(-inertial) odometry: the RGB-D
+// camera's Lambert shading times a world-anchored procedural texture, plus Gaussian pixel noise.
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <vector>
+
+#include "core/types.h"
+#include "sim/ray_scene.h"
+#include "sim/sensors/lighting.h"
+#include "sim/sensors/pinhole_rays.h"
+#include "sim/sensors/sensor_images.h"
+#include "sim/sensors/world_texture.h"
+
+namespace strata::sim {
+
+struct GreyCameraConfig {
+  CameraIntrinsics intrinsics;  // both eyes
+  /// 0 = mono. > 0 = stereo: the right eye sits baseline_m along the left eye's +x axis, same
+  /// orientation (rectified pair). EuRoC's MT9V034 pair has about 0.11 m.
+  double baseline_m = 0.0;
+  WorldTextureConfig texture;
+  /// Gaussian read noise, grey levels (0 = noise-free).
+  double pixel_noise_sigma = 1.0;
+  /// Threads for shading (0 = hardware concurrency); the output never depends on it.
+  int threads = 0;
+
+  /// Throws InputError naming the first bad field.
+  void validate() const;
+};
+
+struct GreyFrame {
+  std::vector<GreyImage> eyes;             // [left] or [left, right]
+  std::vector<Eigen::Isometry3d> T_W_eye;  // camera-to-world pose of each eye
+};
+
+/// Thread safety: render() may be called from several threads at once.
+class GreyCamera {
+ public:
+  explicit GreyCamera(GreyCameraConfig config);
+
+  /// Renders each eye; T_W_C is the left (or only) eye. Same seed, same bytes.
+  GreyFrame render(const RayScene& scene, const Eigen::Isometry3d& T_W_C, const Lighting& lighting,
+                   std::uint64_t frame_seed) const;
+
+  const GreyCameraConfig& config() const { return config_; }
+
+ private:
+  GreyImage renderEye(const RayScene& scene, const Eigen::Isometry3d& T_W_eye,
+                      const Lighting& lighting, std::uint64_t eye_seed) const;
+
+  GreyCameraConfig config_;
+  PixelRayTable ray_table_;
+};
+
+}  // namespace strata::sim

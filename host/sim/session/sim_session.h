@@ -1,0 +1,73 @@
+#pragma once
+// One simulated mapping session as a Dataset: frames rendered on demand in memory (no disk), the
+// exact poses kept beside the (optionally drifted) poses given to the mapper.
+// Thread safety: load()/render() may be called from several threads at once.
+#include <memory>
+#include <vector>
+
+#include "io/dataset.h"
+#include "sim/sensors/imu.h"
+#include "sim/sensors/odometry_drift.h"
+#include "sim/sensors/rgbd_camera.h"
+#include "sim/sensors/trajectory.h"
+#include "sim/session/session_path.h"
+#include "sim/world/world.h"
+
+namespace strata::sim {
+
+struct SimSessionConfig {
+  RgbdCameraConfig camera;
+  /// Frames per second of the recording along the trajectory.
+  double frame_rate_hz = 30.0;
+  /// > 0: keep this many frames spread evenly over the trajectory (keyframe-like; fast demos).
+  int max_frames = 0;
+  TrajectoryConfig trajectory;
+  SessionPathConfig path;
+  /// Add odometry drift to the poses given to the mapper (the truth is kept).
+  bool drift = false;
+  DriftConfig drift_config;
+  /// Seeds noise, path jitter and drift; 0 = derived from the world's seed.
+  std::uint64_t seed = 0;
+
+  void validate() const;
+};
+
+class SimSessionDataset : public Dataset {
+ public:
+  SimSessionDataset(std::shared_ptr<const World> world, int session,
+                    const SimSessionConfig& config = {});
+  ~SimSessionDataset() override;
+
+  std::string name() const override;
+  std::size_t size() const override { return times_s_.size(); }
+  CameraIntrinsics intrinsics() const override { return config_.camera.intrinsics; }
+  /// The sensor frame with the pose given to the mapper (drifted when configured).
+  RgbdFrame load(std::size_t index) const override;
+  /// Everything the sensor saw, with ground truth (exact depth, object ids).
+  SimulatedFrame render(std::size_t index) const;
+
+  int session() const { return session_; }
+  const World& world() const { return *world_; }
+  const WorldScene& scene() const { return *scene_; }
+  const Trajectory& trajectory() const { return *trajectory_; }
+  double timestamp(std::size_t index) const { return times_s_.at(index); }
+  const std::vector<Eigen::Isometry3d>& truePoses() const { return true_T_W_C_; }
+  const std::vector<Eigen::Isometry3d>& givenPoses() const { return given_T_W_C_; }
+  /// IMU samples over the whole trajectory (EuRoC rates and noise by default).
+  std::vector<ImuSample> imu(const ImuConfig& config = {}) const;
+
+ private:
+  std::shared_ptr<const World> world_;
+  int session_;
+  SimSessionConfig config_;
+  std::uint64_t seed_;
+  std::unique_ptr<WorldScene> scene_;
+  std::unique_ptr<Trajectory> trajectory_;
+  std::unique_ptr<RgbdCamera> camera_;
+  Lighting lighting_;
+  std::vector<double> times_s_;
+  std::vector<Eigen::Isometry3d> true_T_W_C_;
+  std::vector<Eigen::Isometry3d> given_T_W_C_;
+};
+
+}  // namespace strata::sim

@@ -1,0 +1,132 @@
+// Simulated sessions as datasets, `strata sim` output, and the multi-session demo.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "apps/demo_command.h"
+#include "apps/sim_command.h"
+#include "io/dataset.h"
+#include "sim/session/sim_session.h"
+#include "sim/world/world_paths.h"
+
+namespace strata::sim {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::shared_ptr<const World> loadShipped(const std::string& name) {
+  return std::make_shared<const World>(World::load(findWorld(name)));
+}
+
+SimSessionConfig smallConfig(int frames) {
+  SimSessionConfig config;
+  config.max_frames = frames;
+  return config;
+}
+
+TEST(SimSession, PathsStayClearOfEverySurfaceInEveryShippedWorld) {
+  for (const std::string name : {"room", "office", "warehouse"}) {
+    const auto world = loadShipped(name);
+    for (int s = 0; s < world->sessionCount(); ++s) {
+      const SimSessionDataset session(world, s, smallConfig(0));
+      ASSERT_GT(session.size(), 30u) << name;
+      for (const Eigen::Isometry3d& T_W_C : session.truePoses()) {
+        const Eigen::Vector3f p = T_W_C.translation().cast<float>();
+        ASSERT_GT(session.scene().signedDistance(p), 0.1f)
+            << name << " session " << s << " camera at " << p.transpose();
+      }
+    }
+  }
+}
+
+TEST(SimSession, SameSeedSameFramesOtherSeedOtherNoise) {
+  const auto world = loadShipped("room");
+  SimSessionConfig config = smallConfig(3);
+  const SimSessionDataset a(world, 0, config);
+  const SimSessionDataset b(world, 0, config);
+  config.seed = 12345;
+  const SimSessionDataset c(world, 0, config);
+  const RgbdFrame fa = a.load(1), fb = b.load(1), fc = c.load(1);
+  EXPECT_EQ(fa.depth.depth_m, fb.depth.depth_m);
+  EXPECT_EQ(fa.color.rgb, fb.color.rgb);
+  EXPECT_TRUE(fa.T_W_C.isApprox(fb.T_W_C));
+  EXPECT_NE(fa.depth.depth_m, fc.depth.depth_m);
+}
+
+TEST(SimSession, FramesAreValidAndDriftOnlyTouchesTheGivenPoses) {
+  const auto world = loadShipped("room");
+  SimSessionConfig config = smallConfig(20);
+  config.drift = true;
+  const SimSessionDataset session(world, 2, config);
+  const RgbdFrame frame = session.load(5);
+  EXPECT_NO_THROW(validateFrame(frame, session.intrinsics()));
+  EXPECT_TRUE(frame.T_W_C.isApprox(session.givenPoses()[5]));
+  const double drift_m =
+      (session.givenPoses().back().translation() - session.truePoses().back().translation())
+          .norm();
+  EXPECT_GT(drift_m, 0.0);
+  EXPECT_LT(drift_m, 0.5);
+  EXPECT_THROW(session.load(session.size()), InputError);
+}
+
+TEST(SimCommand, WritesReadableTumSessionsWithGroundTruthAndImu) {
+  const fs::path out = fs::temp_directory_path() / "strata_sim_command_test";
+  fs::remove_all(out);
+  apps::SimOptions options;
+  options.sessions = 2;
+  options.max_frames = 4;
+  options.out_dir = out.string();
+  options.drift = true;
+  options.quiet = true;
+  ASSERT_EQ(apps::runSim(options), 0);
+  for (const std::string session : {"session_0", "session_1"}) {
+    const auto dataset = openDataset((out / session).string());
+    EXPECT_EQ(dataset->size(), 4u);
+    EXPECT_FALSE(dataset->load(0).color.empty());
+    EXPECT_TRUE(fs::exists(out / session / "odometry.txt"));
+    std::ifstream imu(out / session / "imu0" / "data.csv");
+    std::string header;
+    std::getline(imu, header);
+    EXPECT_EQ(header.rfind("#timestamp [ns]", 0), 0u) << header;
+  }
+  EXPECT_TRUE(fs::exists(out / "ground_truth" / "session_1" / "objects.json"));
+  EXPECT_TRUE(fs::exists(out / "ground_truth" / "session_1" / "world.ply"));
+  fs::remove_all(out);
+}
+
+TEST(SimCommand, MalformedWorldFileFailsWithItsLine) {
+  const fs::path path = fs::temp_directory_path() / "strata_bad_world.yaml";
+  std::ofstream(path) << "name: bad\nseed: 1\nrooms:\n  - {name: r, min: [0, 0], max: [4]}\n";
+  apps::SimOptions options;
+  options.world = path.string();
+  options.out_dir = (fs::temp_directory_path() / "strata_bad_world_out").string();
+  options.quiet = true;
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(apps::runSim(options), 2);
+  const std::string message = testing::internal::GetCapturedStderr();
+  EXPECT_NE(message.find(":4:"), std::string::npos) << message;
+  fs::remove(path);
+}
+
+TEST(Demo, RunsTwoSessionsAndWritesTheReport) {
+  const fs::path out = fs::temp_directory_path() / "strata_demo_test";
+  fs::remove_all(out);
+  apps::DemoOptions options;
+  options.sessions = 2;
+  options.frames = 6;
+  options.voxel_size_m = 0.05f;
+  options.out_dir = out.string();
+  options.quiet = true;
+  testing::internal::CaptureStdout();
+  ASSERT_EQ(apps::runDemo(options), 0);
+  const std::string summary = testing::internal::GetCapturedStdout();
+  EXPECT_NE(summary.find("Session 1 changed objects"), std::string::npos) << summary;
+  EXPECT_TRUE(fs::exists(out / "report.json"));
+  EXPECT_TRUE(fs::exists(out / "session_1_mesh.ply"));
+  EXPECT_TRUE(fs::exists(out / "session_1_view.png"));
+  fs::remove_all(out);
+}
+
+}  // namespace
+}  // namespace strata::sim

@@ -1,0 +1,461 @@
+// Synthetic multi-session worlds: world files, seeded layouts, meshes, Embree scene ground truth.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+#include "core/error.h"
+#include "mesh/mesh_metrics.h"
+#include "sim/world/footprint.h"
+#include "sim/world/ground_truth.h"
+#include "sim/world/mesh_file.h"
+#include "sim/world/world.h"
+#include "sim/world/world_paths.h"
+#include "test_utils.h"
+
+namespace strata::sim {
+namespace {
+
+namespace fs = std::filesystem;
+
+const char* const kShippedWorlds[] = {"room", "office", "warehouse"};
+
+/// One room 4 x 3 x 2.5 m with one box (0.6 x 0.4 x 0.5) at (2, 1.5), yaw `yaw` degrees.
+std::string boxRoomYaml(double yaw_deg) {
+  return "name: box_room\nsessions: 1\nwall_thickness: 0.1\n"
+         "rooms:\n  - {min: [0, 0], max: [4, 3], height: 2.5, floor: {albedo: [10, 20, 30]}}\n"
+         "objects:\n  - {name: crate, type: box, size: [0.6, 0.4, 0.5], at: [2, 1.5], yaw: " +
+         std::to_string(yaw_deg) + ", albedo: [200, 60, 40], reflectivity: 0.5}\n";
+}
+
+/// Signed distance to the box room above, with the box at yaw 0: min over floor, ceiling, walls
+/// (interior faces) and the box. Exact outside every solid and inside the box.
+double analyticBoxRoomSdf(const Eigen::Vector3d& p) {
+  const double room = std::min({p.z(), 2.5 - p.z(), p.x(), 4.0 - p.x(), p.y(), 3.0 - p.y()});
+  const Eigen::Vector3d centre(2.0, 1.5, 0.25), half(0.3, 0.2, 0.25);
+  const Eigen::Vector3d q = (p - centre).cwiseAbs() - half;
+  const double box = q.cwiseMax(0.0).norm() + std::min(q.maxCoeff(), 0.0);
+  return std::min(room, box);
+}
+
+std::string readText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+fs::path freshDir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("strata_test_world_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string errorOf(const std::string& yaml) {
+  try {
+    World::fromYaml(yaml, "bad.yaml");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST(World, ParsesShippedWorlds) {
+  for (const char* name : kShippedWorlds) {
+    SCOPED_TRACE(name);
+    const World world = World::load(findWorld(name));
+    EXPECT_EQ(world.name(), name);
+    EXPECT_EQ(world.sessionCount(), 5);
+    EXPECT_GE(world.objectCount(), 8);
+    EXPECT_FALSE(world.staticMesh().empty());
+  }
+  const World room = World::load(defaultWorldPath());
+  EXPECT_EQ(room.name(), "room");
+  const Eigen::Vector3d size = room.bounds().sizes();
+  EXPECT_NEAR(size.x(), 5.2, 1e-6);  // interior 5 x 4 x 2.5 plus 0.1 m walls, floor, ceiling
+  EXPECT_NEAR(size.y(), 4.2, 1e-6);
+  EXPECT_NEAR(size.z(), 2.7, 1e-6);
+  for (int s = 0; s < room.sessionCount(); ++s) {
+    EXPECT_GE(room.session(s).presentCount(), 8);
+    EXPECT_LE(room.session(s).presentCount(), 15);
+  }
+}
+
+TEST(World, MalformedFilesNameLineAndField) {
+  const std::string head = "rooms:\n  - {min: [0, 0], max: [4, 3], height: 2.5}\nobjects:\n";
+  struct Case {
+    std::string yaml, expected;
+  };
+  const std::vector<Case> cases = {
+      {head + "  - {type: sphere, size: [1, 1, 1]}\n",
+       "bad.yaml:4: objects[0].type: unknown type 'sphere'"},
+      {head + "  - {name: a, type: box}\n", "bad.yaml:4: objects[0].size: missing"},
+      {head + "  - name: a\n    type: box\n    size: [1, 2]\n",
+       "bad.yaml:6: objects[0].size: expected 3 numbers, got 2"},
+      {head + "  - {type: box, size: [1, -2, 1]}\n",
+       "bad.yaml:4: objects[0].size: every size must be positive"},
+      {head + "  - name: a\n    type: box\n    size: [1, 1, 1]\n    albdo: [1, 2, 3]\n",
+       "bad.yaml:7: objects[0].albdo: unknown key (did you mean 'albedo'?)"},
+      {head + "  - {type: box, size: [1, x, 1]}\n",
+       "bad.yaml:4: objects[0].size[1]: expected a number, got 'x'"},
+      {head + "  - {type: cylinder, radius: 0.2, height: 1, size: [1, 1, 1]}\n",
+       "bad.yaml:4: objects[0].size: unknown key"},
+      {head + "  - {type: box, size: [1, 1, 1], albedo: [1, 2, 300]}\n",
+       "bad.yaml:4: objects[0].albedo[2]: must be in [0, 255]"},
+      {"rooms:\n  - {min: [0, 0], max: [0, 3], height: 2.5}\nobjects: []\n",
+       "bad.yaml:2: rooms[0].max: must exceed min"},
+      {"seed: 1\nrooms: [{min: [0, 0], max: [4, 3], height: 2.5}]\n"
+       "objects: [{type: box, size: [1, 1, 1]}]\nchanges:\n  move_probability: 1.5\n",
+       "bad.yaml:5: changes.move_probability: must be in [0, 1]"},
+      {"rooms: [{min: [0, 0], max: [4, 3], height: 2.5}]\nobjects: [{type: box, size: [1, 1, 1]]\n",
+       "bad.yaml:2: YAML syntax error"},
+      {"rooms: [{min: [0, 0], max: [4, 3], height: 2.5}]\npool:\n"
+       "  - {type: box, size: [1, 1, 1], at: [1, 1]}\n",
+       "bad.yaml:3: pool[0].at: pool objects are placed by the seed"},
+      {"rooms: [{min: [0, 0], max: [4, 3], height: 2.5}]\nsesions: 3\n",
+       "bad.yaml:2: sesions: unknown key (did you mean 'sessions'?)"},
+      {"rooms: [{min: [0, 0], max: [4, 3], height: 2.5}]\ndoors: [{at: [2, 1.5]}]\n"
+       "objects: [{type: box, size: [1, 1, 1]}]\n",
+       "bad.yaml:2: doors[0].at: lies in no wall"},
+      {head + "  - {name: a, type: box, size: [1, 1, 1], at: [1, 1]}\n"
+              "  - {name: b, type: box, size: [1, 1, 1], at: [1.5, 1]}\n",
+       "bad.yaml:5: object 'b': its given pose overlaps a"},
+  };
+  for (const Case& c : cases) {
+    const std::string message = errorOf(c.yaml);
+    EXPECT_NE(message.find(c.expected), std::string::npos)
+        << "expected '" << c.expected << "' in '" << message << "'";
+  }
+}
+
+TEST(World, LoadErrorsNameTheFile) {
+  EXPECT_THROW(World::load("/nonexistent/world.yaml"), InputError);
+  EXPECT_THROW(findWorld("no_such_world"), InputError);
+  const World room = World::load(defaultWorldPath());
+  EXPECT_THROW(room.session(room.sessionCount()), InputError);
+  EXPECT_THROW(room.objectMesh(0), InputError);
+}
+
+TEST(World, SameSeedSameTruthAndFilesDifferentSeedDifferentLayout) {
+  const World a = World::load(defaultWorldPath());
+  const World b = World::load(defaultWorldPath());
+  const World c = World::load(defaultWorldPath(), World::Options{99, std::nullopt});
+  bool differs = false;
+  for (int s = 0; s < a.sessionCount(); ++s) {
+    for (std::size_t i = 0; i < a.session(s).objects.size(); ++i) {
+      const ObjectState& x = a.session(s).objects[i];
+      const ObjectState& y = b.session(s).objects[i];
+      EXPECT_EQ(x.present, y.present);
+      EXPECT_EQ(x.T_W_O.matrix(), y.T_W_O.matrix());
+      EXPECT_EQ(x.since_previous, y.since_previous);
+      const ObjectState& z = c.session(s).objects[i];
+      differs = differs || z.present != x.present || !z.T_W_O.isApprox(x.T_W_O);
+    }
+  }
+  EXPECT_TRUE(differs) << "seed 99 gave the same layout as seed 7";
+
+  const fs::path dir_a = freshDir("gt_a"), dir_b = freshDir("gt_b");
+  writeGroundTruth(a, dir_a.string());
+  writeGroundTruth(b, dir_b.string());
+  int files = 0;
+  for (const auto& entry : fs::recursive_directory_iterator(dir_a)) {
+    if (!entry.is_regular_file()) continue;
+    const fs::path relative = fs::relative(entry.path(), dir_a);
+    EXPECT_EQ(readText(entry.path().string()), readText((dir_b / relative).string())) << relative;
+    ++files;
+  }
+  EXPECT_GT(files, 5 * 3);
+  const std::string json = readText((dir_a / "session_1" / "objects.json").string());
+  EXPECT_NE(json.find("\"changed_since_previous\""), std::string::npos);
+  EXPECT_NE(json.find("\"T_W_O\""), std::string::npos);
+  fs::remove_all(dir_a);
+  fs::remove_all(dir_b);
+}
+
+TEST(World, EverySessionChangesAndNothingOverlaps) {
+  for (const char* name : kShippedWorlds) {
+    SCOPED_TRACE(name);
+    const World world = World::load(findWorld(name));
+    for (int s = 0; s < world.sessionCount(); ++s) {
+      const SessionTruth& truth = world.session(s);
+      if (s > 0) {
+        EXPECT_GE(truth.changedIds().size(), 1u) << "session " << s;
+      }
+      std::vector<Footprint> placed;
+      for (const ObjectState& object : truth.objects) {
+        if (!object.present) continue;
+        const Eigen::Vector2d half = 0.5 * world.object(object.id).shape.size_m.head<2>();
+        const Footprint f = makeFootprint(half, object.at_m, object.yaw_deg);
+        for (const Footprint& other : placed) {
+          EXPECT_FALSE(overlaps(f, other, 0.0)) << object.name << " in session " << s;
+        }
+        placed.push_back(f);
+      }
+    }
+  }
+}
+
+TEST(World, ChangeLabelsMatchPoses) {
+  const World world = World::load(findWorld("warehouse"));
+  for (int s = 1; s < world.sessionCount(); ++s) {
+    for (const ObjectState& now : world.session(s).objects) {
+      const ObjectState& before = world.session(s - 1).objects[now.id - 1];
+      Change expected = Change::kNone;
+      if (before.present && !now.present) expected = Change::kRemoved;
+      if (!before.present && now.present) expected = Change::kAdded;
+      if (before.present && now.present && !before.T_W_O.isApprox(now.T_W_O)) {
+        expected = Change::kMoved;
+      }
+      EXPECT_EQ(now.since_previous, expected) << now.name << " in session " << s;
+    }
+  }
+}
+
+TEST(World, RaysHitFloorAndBoxFaces) {
+  for (const double yaw : {0.0, 30.0}) {
+    SCOPED_TRACE(yaw);
+    const World world = World::fromYaml(boxRoomYaml(yaw), "box_room.yaml");
+    const auto scene = world.buildScene(0);
+    const Eigen::Matrix3f R =
+        Eigen::AngleAxisf(static_cast<float>(yaw * M_PI / 180.0), Eigen::Vector3f::UnitZ())
+            .toRotationMatrix();
+    const Eigen::Vector3f centre(2.0f, 1.5f, 0.25f);
+    std::vector<Ray> rays = {
+        {Eigen::Vector3f(0.7f, 0.6f, 1.2f), -Eigen::Vector3f::UnitZ()},                  // floor
+        {centre + R * Eigen::Vector3f(-1.3f, 0, 0), R * Eigen::Vector3f::UnitX()},       // -x face
+        {centre + R * Eigen::Vector3f(0, 0.9f, 0.1f), -(R * Eigen::Vector3f::UnitY())},  // +y face
+        {Eigen::Vector3f(2.0f, 1.5f, 2.0f), -Eigen::Vector3f::UnitZ()},                  // box top
+        {Eigen::Vector3f(1.0f, 1.0f, 1.0f), Eigen::Vector3f::UnitZ(), 0.5f},  // ends short
+    };
+    std::vector<RayHit> hits;
+    scene->intersect(rays, hits);
+    ASSERT_EQ(hits.size(), rays.size());
+    EXPECT_NEAR(hits[0].t_m, 1.2f, 1e-5f);
+    EXPECT_EQ(hits[0].object_id, kStaticObjectId);
+    EXPECT_TRUE(hits[0].normal_W.isApprox(Eigen::Vector3f::UnitZ(), 1e-5f));
+    EXPECT_EQ(hits[0].material.albedo, (std::array<std::uint8_t, 3>{10, 20, 30}));
+    EXPECT_NEAR(hits[1].t_m, 1.0f, 1e-5f);
+    EXPECT_EQ(hits[1].object_id, 1);
+    EXPECT_TRUE(hits[1].normal_W.isApprox(-(R * Eigen::Vector3f::UnitX()), 1e-5f));
+    EXPECT_EQ(hits[1].material.albedo, (std::array<std::uint8_t, 3>{200, 60, 40}));
+    EXPECT_FLOAT_EQ(hits[1].material.reflectivity, 0.5f);
+    EXPECT_NEAR(hits[2].t_m, 0.7f, 1e-5f);
+    EXPECT_TRUE(hits[2].normal_W.isApprox(R * Eigen::Vector3f::UnitY(), 1e-5f));
+    EXPECT_NEAR(hits[3].t_m, 1.5f, 1e-5f);
+    EXPECT_EQ(hits[3].object_id, 1);
+    EXPECT_FALSE(hits[4].hit());
+  }
+}
+
+TEST(World, BatchedIntersectMatchesSingleRays) {
+  const World world = World::load(defaultWorldPath());
+  const auto scene = world.buildScene(2, WorldScene::Config{3, 64});
+  std::mt19937 rng(5);  // test inputs only; the world itself never uses std distributions
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  std::vector<Ray> rays(3000);
+  for (Ray& ray : rays) {
+    ray.origin_W = Eigen::Vector3f(2.5f + u(rng), 2.0f + u(rng), 1.2f + 0.5f * u(rng));
+    ray.direction_W = Eigen::Vector3f(u(rng), u(rng), u(rng)).normalized();
+  }
+  std::vector<RayHit> batch, single;
+  scene->intersect(rays, batch);
+  for (std::size_t i = 0; i < rays.size(); i += 97) {
+    scene->intersect({rays[i]}, single);
+    EXPECT_EQ(single[0].object_id, batch[i].object_id);
+    EXPECT_EQ(single[0].t_m, batch[i].t_m);
+  }
+  for (const RayHit& hit : batch) EXPECT_TRUE(hit.hit());  // a closed room: every ray hits
+}
+
+TEST(World, SignedDistanceMatchesAnalyticBoxRoom) {
+  const World world = World::fromYaml(boxRoomYaml(0.0), "box_room.yaml");
+  const auto scene = world.buildScene(0);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> ux(0.01, 3.99), uy(0.01, 2.99), uz(0.01, 2.49);
+  int checked = 0;
+  for (int i = 0; i < 400; ++i) {
+    const Eigen::Vector3d p(ux(rng), uy(rng), uz(rng));
+    const Eigen::Vector3f pf = p.cast<float>();
+    const double expected = analyticBoxRoomSdf(pf.cast<double>());
+    if (std::abs(expected) < 1e-3) continue;  // on a surface the sign is a coin toss
+    EXPECT_NEAR(scene->signedDistance(pf), expected, 1e-5) << p.transpose();
+    EXPECT_EQ(scene->occupied(pf), expected < 0.0) << p.transpose();
+    ++checked;
+  }
+  EXPECT_GT(checked, 350);
+  // Points inside the box, where the nearest face is known.
+  EXPECT_NEAR(scene->signedDistance({2.05f, 1.5f, 0.3f}), -0.2f, 1e-5f);
+  EXPECT_NEAR(scene->signedDistance({2.2f, 1.45f, 0.25f}), -0.1f, 1e-5f);
+}
+
+TEST(World, OccupancyOfSolids) {
+  const World world = World::fromYaml(boxRoomYaml(30.0), "box_room.yaml");
+  const auto scene = world.buildScene(0);
+  EXPECT_TRUE(scene->occupied({2.0f, 1.5f, 0.25f}));    // box centre
+  EXPECT_TRUE(scene->occupied({2.1f, 1.6f, 0.45f}));    // inside the turned box
+  EXPECT_FALSE(scene->occupied({1.0f, 1.0f, 1.0f}));    // free space
+  EXPECT_TRUE(scene->occupied({-0.05f, 1.5f, 1.0f}));   // in the west wall
+  EXPECT_TRUE(scene->occupied({1.0f, 1.0f, -0.05f}));   // in the floor slab
+  EXPECT_TRUE(scene->occupied({1.0f, 1.0f, 2.55f}));    // in the ceiling slab
+  EXPECT_FALSE(scene->occupied({-1.0f, -1.0f, 1.0f}));  // outside the building
+  EXPECT_LT(scene->signedDistance({-0.05f, 1.5f, 1.0f}), 0.0f);
+  EXPECT_NEAR(scene->signedDistance({-1.0f, 1.5f, 1.0f}), 0.9f, 1e-5f);
+}
+
+TEST(World, SceneFollowsTheSessionTruth) {
+  for (const char* name : kShippedWorlds) {
+    SCOPED_TRACE(name);
+    const World world = World::load(findWorld(name));
+    for (int s = 0; s < world.sessionCount(); ++s) {
+      const auto scene = world.buildScene(s);
+      std::vector<Ray> rays;
+      std::vector<const ObjectState*> objects;
+      for (const ObjectState& object : world.session(s).objects) {
+        if (object.shape == ShapeKind::kMesh) continue;  // a mesh may have no top at its centre
+        const Eigen::Vector3f above(object.at_m.x(), object.at_m.y(), 2.0f);
+        rays.push_back({above, -Eigen::Vector3f::UnitZ()});
+        objects.push_back(&object);
+      }
+      std::vector<RayHit> hits;
+      scene->intersect(rays, hits);
+      for (std::size_t i = 0; i < rays.size(); ++i) {
+        if (objects[i]->present) {
+          EXPECT_EQ(hits[i].object_id, objects[i]->id) << objects[i]->name << " session " << s;
+          // Straight down onto the centre: the seat of a chair, the top of anything else.
+          const double top = world.object(objects[i]->id).shape.size_m.z() *
+                             (objects[i]->shape == ShapeKind::kChair ? 0.5 : 1.0);
+          EXPECT_NEAR(hits[i].t_m, 2.0 - top, 1e-4) << objects[i]->name;
+        } else {
+          EXPECT_NE(hits[i].object_id, objects[i]->id) << objects[i]->name << " session " << s;
+        }
+      }
+    }
+  }
+}
+
+/// Signed volume by the divergence theorem: positive when the triangles face outwards.
+double signedVolume(const Mesh& mesh) {
+  double volume = 0.0;
+  for (const Eigen::Vector3i& t : mesh.triangles) {
+    volume += mesh.vertices[t[0]].cast<double>().dot(
+                  mesh.vertices[t[1]].cast<double>().cross(mesh.vertices[t[2]].cast<double>())) /
+              6.0;
+  }
+  return volume;
+}
+
+TEST(World, MeshesAreClosedAndFaceOutwards) {
+  const World world = World::load(findWorld("office"));
+  for (int id = 1; id <= world.objectCount(); ++id) {
+    if (world.object(id).shape.kind == ShapeKind::kMesh) continue;  // file meshes: as given
+    const Mesh mesh = world.objectMesh(id);
+    SCOPED_TRACE(world.object(id).name);
+    EXPECT_TRUE(analyzeTopology(mesh).isClosedOriented());
+    EXPECT_GT(signedVolume(mesh), 0.0);
+  }
+  const Mesh static_mesh = world.staticMesh();
+  EXPECT_TRUE(analyzeTopology(static_mesh).isClosedOriented());
+  EXPECT_GT(signedVolume(static_mesh), 0.0);
+  const Mesh session = world.sessionMesh(1);
+  EXPECT_GT(session.triangles.size(), static_mesh.triangles.size());
+  EXPECT_EQ(session.colors.size(), session.vertices.size());
+  // Box of 0.6 x 0.4 x 0.5: exact volume.
+  const World box = World::fromYaml(boxRoomYaml(0.0), "box_room.yaml");
+  EXPECT_NEAR(signedVolume(box.objectMesh(1)), 0.6 * 0.4 * 0.5, 1e-6);
+}
+
+TEST(World, DoorsOpenTheWalls) {
+  const World world = World::load(findWorld("office"));
+  const auto scene = world.buildScene(0);
+  // Through the office_a door (x = 3, y = 3.95) from office_a into the corridor, at 1 m height.
+  std::vector<RayHit> hits;
+  scene->intersect({{Eigen::Vector3f(3.0f, 3.0f, 1.0f), Eigen::Vector3f::UnitY()}}, hits);
+  EXPECT_GT(hits[0].t_m, 2.0f);  // passes the wall at y = 3.9 .. 4.0
+  // Beside the door the wall is there.
+  scene->intersect({{Eigen::Vector3f(2.0f, 3.0f, 1.0f), Eigen::Vector3f::UnitY()}}, hits);
+  EXPECT_NEAR(hits[0].t_m, 0.9f, 1e-5f);
+  // Above the door, the lintel.
+  scene->intersect({{Eigen::Vector3f(3.0f, 3.0f, 2.3f), Eigen::Vector3f::UnitY()}}, hits);
+  EXPECT_NEAR(hits[0].t_m, 0.9f, 1e-5f);
+}
+
+TEST(World, ObjMeshObjectsAndOptionalFiles) {
+  const fs::path dir = freshDir("obj");
+  std::ofstream((dir / "cube.obj").string())
+      << "# unit cube, quads, one face with negative indices\n"
+         "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+         "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 3 4 8 7\nf 2/1 3/1 7/1 6/1\nf -8//1 -4//1 -1//1 "
+         "-5//1\n";
+  const Mesh cube = readObj((dir / "cube.obj").string());
+  EXPECT_EQ(cube.triangles.size(), 12u);
+  EXPECT_TRUE(analyzeTopology(cube).isClosedOriented());
+
+  const std::string rooms = "rooms: [{min: [0, 0], max: [4, 3], height: 2.5}]\nsessions: 1\n";
+  const World world = World::fromYaml(
+      rooms +
+          "objects:\n  - {name: cube, type: mesh, file: cube.obj, scale: 0.5, at: [2, 1.5]}\n"
+          "  - {name: ghost, type: mesh, file: missing.obj, optional: true}\n",
+      "mesh.yaml", World::Options{}, dir.string());
+  ASSERT_EQ(world.objectCount(), 1);  // the optional missing mesh is skipped
+  EXPECT_TRUE(world.object(1).shape.size_m.isApprox(Eigen::Vector3d::Constant(0.5)));
+  const auto scene = world.buildScene(0);
+  EXPECT_NEAR(scene->signedDistance({2.0f, 1.5f, 0.3f}), -0.2f, 1e-5f);
+  EXPECT_NEAR(scene->signedDistance({2.0f, 1.5f, 0.7f}), 0.2f, 1e-5f);
+
+  const std::string message = [&] {
+    try {
+      World::fromYaml(rooms + "objects:\n  - {name: gone, type: mesh, file: missing.obj}\n",
+                      "mesh.yaml", World::Options{}, dir.string());
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no error)");
+  }();
+  EXPECT_NE(message.find("mesh.yaml:4: objects[0].file: mesh file"), std::string::npos) << message;
+  fs::remove_all(dir);
+}
+
+TEST(World, BunnyMeshObject) {
+  STRATA_REQUIRE_DATA("meshes/stanford-bunny.obj", bunny_path);
+  const World world = World::fromYaml(
+      "rooms: [{min: [0, 0], max: [4, 3], height: 2.5}]\nsessions: 1\nobjects:\n"
+      "  - {name: bunny, type: mesh, file: '" +
+          bunny_path + "', up: y, scale: 2, at: [2, 1.5]}\n",
+      "bunny.yaml");
+  EXPECT_NEAR(world.object(1).shape.size_m.z(), 2 * 0.1543, 0.01);  // y extent of the file
+  const auto scene = world.buildScene(0);
+  std::vector<RayHit> hits;
+  scene->intersect({{Eigen::Vector3f(2.0f, 1.5f, 1.0f), -Eigen::Vector3f::UnitZ()}}, hits);
+  EXPECT_EQ(hits[0].object_id, 1);
+  EXPECT_GT(scene->signedDistance({2.0f, 1.5f, 1.0f}), 0.5f);
+}
+
+TEST(World, LightingVariesPerSessionWhenAsked) {
+  const World room = World::load(defaultWorldPath());
+  const Light& first = room.session(0).light;
+  EXPECT_TRUE(first.direction_W.isApprox(Eigen::Vector3d(0.3, -0.4, 1.0).normalized()));
+  EXPECT_DOUBLE_EQ(first.intensity, 0.65);
+  const Light& later = room.session(1).light;
+  const double angle = std::acos(std::clamp(later.direction_W.dot(first.direction_W), -1.0, 1.0));
+  EXPECT_LE(angle, 15.0 * M_PI / 180.0 + 1e-9);
+  EXPECT_NE(later.intensity, first.intensity);
+  EXPECT_NEAR(later.intensity, 0.65, 0.65 * 0.2 + 1e-12);
+}
+
+TEST(World, WorldsDirOverride) {
+  const fs::path dir = freshDir("worlds_dir");
+  fs::copy_file(defaultWorldPath(), dir / "room.yaml");
+  setenv("STRATA_WORLDS_DIR", dir.c_str(), 1);
+  EXPECT_EQ(defaultWorldPath(), (dir / "room.yaml").string());
+  EXPECT_EQ(findWorld("room"), (dir / "room.yaml").string());
+  unsetenv("STRATA_WORLDS_DIR");
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace strata::sim
