@@ -2,6 +2,7 @@
 // progress on stderr.
 #include <CLI/CLI.hpp>
 
+#include "esdf_command.h"
 #include "fuse_command.h"
 #include "sim_command.h"
 
@@ -12,6 +13,8 @@ int main(int argc, char** argv) {
   CLI::App* fuse = strata::bench::addFuseCommand(app, fuse_options);
   strata::bench::SimBenchOptions sim_options;
   CLI::App* sim = strata::bench::addSimCommand(app, sim_options);
+  strata::bench::EsdfBenchOptions esdf_options;
+  CLI::App* esdf = strata::bench::addEsdfCommand(app, esdf_options);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -19,5 +22,6 @@ int main(int argc, char** argv) {
   }
   if (fuse->parsed()) return strata::bench::runFuseBench(fuse_options);
   if (sim->parsed()) return strata::bench::runSimBench(sim_options);
+  if (esdf->parsed()) return strata::bench::runEsdfBench(esdf_options);
   return 2;
 }

@@ -30,7 +30,7 @@ layout(push_constant, std430) uniform Push {
   uint hash_mask;
   uint pass_id;
   uint touched_capacity;
-  uint pad0;
+  uint free_space_stride;  // > 0: every stride-th pixel (both axes) also allocates its free space
   uint pad1;
   uint pad2;
 } pc;
@@ -76,6 +76,13 @@ void main() {
   vec3 origin_W = pc.T_W_C[3].xyz;
   float t_start = max(range_m - pc.truncation_m, 0.0);
   float t_end = range_m + pc.truncation_m;
+  // Free space (for the ESDF: planners need distances away from surfaces too): on a sparse pixel
+  // grid, the whole ray from the near limit is allocated; blocks are 8 voxels wide, so a stride of
+  // a few pixels still reaches every block the view crosses at working ranges.
+  if (pc.free_space_stride > 0u && pixel.x % pc.free_space_stride == 0u &&
+      pixel.y % pc.free_space_stride == 0u) {
+    t_start = min(t_start, pc.min_depth_m * length(ray_C));
+  }
 
   // Amanatides-Woo traversal of the block grid along [t_start, t_end].
   vec3 start_b = (origin_W + dir_W * t_start) / pc.block_size_m;
@@ -86,7 +93,7 @@ void main() {
   vec3 next_boundary = vec3(block) + max(vec3(step_dir), vec3(0.0));
   vec3 t_max = abs(next_boundary - start_b) * inv_dir * pc.block_size_m + t_start;
   vec3 t_delta = inv_dir * pc.block_size_m;
-  int max_steps = 3 * (int(ceil(2.0 * pc.truncation_m / pc.block_size_m)) + 2);
+  int max_steps = 3 * (int(ceil((t_end - t_start) / pc.block_size_m)) + 2);
   for (int s = 0; s < max_steps; ++s) {
     insertBlock(block);
     if (block == end_block) break;

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <algorithm>
 #include <limits>
 
 #include "core/error.h"
@@ -49,10 +50,13 @@ void expectDeviceMatchesReference(const TsdfMap& device, const TsdfMap& referenc
       << diff.weight_mismatches << " of " << diff.updated_voxels << " weights differ";
 }
 
-TEST(BlockAllocation, DeviceListsExactlyTheReferenceBlocks) {
+class BlockAllocation : public ::testing::TestWithParam<bool> {};
+
+TEST_P(BlockAllocation, DeviceListsExactlyTheReferenceBlocks) {
   const auto dataset = analyticDataset(1);
   const RgbdFrame frame = dataset.load(0);
   MapConfig config;
+  config.allocate_free_space = GetParam();
   DeviceFusion fusion(test::sharedContext(), config);
   const FrameStats stats = fusion.integrate(frame, dataset.intrinsics());
   const auto reference = touchedBlocksReference(
@@ -64,7 +68,31 @@ TEST(BlockAllocation, DeviceListsExactlyTheReferenceBlocks) {
   for (const BlockIndex& b : reference) EXPECT_NE(map.findBlock(b), nullptr);
 }
 
-TEST(BlockAllocation, TableAndPoolGrowWithoutDroppingBlocks) {
+INSTANTIATE_TEST_SUITE_P(BandAndFreeSpace, BlockAllocation, ::testing::Bool());
+
+TEST(BlockAllocationFreeSpace, CoversTheSpaceInFrontOfSurfaces) {
+  const auto dataset = analyticDataset(1);
+  const RgbdFrame frame = dataset.load(0);
+  MapConfig band;
+  MapConfig free = band;
+  free.allocate_free_space = true;
+  const FrameCamera camera = FrameCamera::from(dataset.intrinsics(), frame.T_W_C);
+  const auto band_blocks = touchedBlocksReference(frame.depth, camera, band);
+  const auto free_blocks = touchedBlocksReference(frame.depth, camera, free);
+  EXPECT_GT(free_blocks.size(), 2 * band_blocks.size());
+  // The block half-way between the camera and the surface at the image centre is allocated.
+  const float depth = frame.depth.at(320, 240);
+  const Eigen::Vector3d mid_W = frame.T_W_C * Eigen::Vector3d(0, 0, 0.5 * depth);
+  const BlockIndex mid = (mid_W.cast<float>() / free.blockSize()).array().floor().cast<int>();
+  EXPECT_TRUE(std::binary_search(free_blocks.begin(), free_blocks.end(), mid,
+                                 [](const BlockIndex& a, const BlockIndex& b) {
+                                   if (a.z() != b.z()) return a.z() < b.z();
+                                   if (a.y() != b.y()) return a.y() < b.y();
+                                   return a.x() < b.x();
+                                 }));
+}
+
+TEST(BlockAllocationGrowth, TableAndPoolGrowWithoutDroppingBlocks) {
   const auto dataset = analyticDataset(3);
   MapConfig small;
   small.initial_block_capacity = 1;

@@ -13,7 +13,7 @@ int signOf(float x) { return (x > 0.0f) - (x < 0.0f); }
 /// loop in allocate_blocks.comp step for step.
 template <typename Visit>
 void traverseBlocks(const Eigen::Vector3f& origin_W, const Eigen::Vector3f& dir_W, float t_start,
-                    float t_end, float block_size_m, float truncation_m, Visit&& visit) {
+                    float t_end, float block_size_m, Visit&& visit) {
   const Eigen::Vector3f start_b = (origin_W + dir_W * t_start) / block_size_m;
   Eigen::Vector3i block = start_b.array().floor().cast<int>();
   const Eigen::Vector3i end_block =
@@ -25,7 +25,7 @@ void traverseBlocks(const Eigen::Vector3f& origin_W, const Eigen::Vector3f& dir_
   Eigen::Vector3f t_max = ((next_boundary - start_b).cwiseAbs().cwiseProduct(inv_dir) *
                            block_size_m).array() + t_start;
   const Eigen::Vector3f t_delta = inv_dir * block_size_m;
-  const int max_steps = 3 * (static_cast<int>(std::ceil(2.0f * truncation_m / block_size_m)) + 2);
+  const int max_steps = 3 * (static_cast<int>(std::ceil((t_end - t_start) / block_size_m)) + 2);
   for (int s = 0; s < max_steps; ++s) {
     visit(block);
     if (block == end_block) break;
@@ -57,8 +57,12 @@ std::vector<BlockIndex> touchedBlocksReference(const DepthImage& depth, const Fr
       const Eigen::Vector3f ray_C = pixelRay(static_cast<float>(u), static_cast<float>(v), camera.K);
       const float range_m = d * ray_C.norm();
       const Eigen::Vector3f dir_W = R_W_C * ray_C.normalized();
-      traverseBlocks(origin_W, dir_W, std::max(range_m - truncation_m, 0.0f),
-                     range_m + truncation_m, block_size_m, truncation_m,
+      float t_start = std::max(range_m - truncation_m, 0.0f);
+      const std::uint32_t stride = config.allocate_free_space ? config.free_space_pixel_stride : 0;
+      if (stride > 0 && u % stride == 0 && v % stride == 0) {
+        t_start = std::min(t_start, config.min_depth_m * ray_C.norm());
+      }
+      traverseBlocks(origin_W, dir_W, t_start, range_m + truncation_m, block_size_m,
                      [&](const BlockIndex& b) {
                        if (blockIndexInRange(b)) touched.insert(b);
                      });

@@ -51,8 +51,10 @@ void DeviceFusion::stageFrame(const RgbdFrame& frame) {
   }
 }
 
-FrameStats DeviceFusion::integrate(const RgbdFrame& frame, const CameraIntrinsics& intrinsics) {
+FrameStats DeviceFusion::integrate(const RgbdFrame& frame, const CameraIntrinsics& intrinsics,
+                                   int layer) {
   const auto wall_start = std::chrono::steady_clock::now();
+  map_.poolAddress(layer);  // throws InputError for a layer the map lacks
   intrinsics.validate();
   validateFrame(frame, intrinsics);
   const FrameCamera camera = FrameCamera::from(intrinsics, frame.T_W_C);
@@ -87,8 +89,9 @@ FrameStats DeviceFusion::integrate(const RgbdFrame& frame, const CameraIntrinsic
     if (!retry) break;
   }
   stats.touched_blocks = counters.touched_count;
+  last_touched_.clear();
   if (counters.touched_count > 0) {
-    runIntegration(camera, !frame.color.empty(), counters.touched_count, stats);
+    runIntegration(camera, !frame.color.empty(), counters.touched_count, layer, stats);
   }
   stats.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() -
                                                             wall_start).count();
@@ -109,6 +112,7 @@ gpu::MapCounters DeviceFusion::runAllocation(const FrameCamera& camera, bool upl
   push.hash_mask = map_.hashMask();
   push.pass_id = ++pass_id_;
   push.touched_capacity = touched_capacity_;
+  push.free_space_stride = config().allocate_free_space ? config().free_space_pixel_stride : 0u;
 
   vk::DescriptorSet set = vk::DescriptorSet::create(
       context_, allocate_pipeline_, {&map_.hashEntries(), &map_.counters(), &touched_, &depth_});
@@ -160,7 +164,7 @@ gpu::MapCounters DeviceFusion::runAllocation(const FrameCamera& camera, bool upl
 }
 
 void DeviceFusion::runIntegration(const FrameCamera& camera, bool has_color,
-                                  std::uint32_t touched, FrameStats& stats) {
+                                  std::uint32_t touched, int layer, FrameStats& stats) {
   gpu::IntegratePush push{};
   gpu::storeMatrix(camera.T_C_W, push.T_C_W);
   for (int i = 0; i < 4; ++i) push.K[i] = camera.K[i];
@@ -172,7 +176,7 @@ void DeviceFusion::runIntegration(const FrameCamera& camera, bool has_color,
   push.truncation_m = config().truncationDistance();
   push.max_weight = config().max_weight;
   push.dropoff_start_m = config().dropoff_start_voxels * config().voxel_size_m;
-  push.pool_address = map_.poolAddress();
+  push.pool_address = map_.poolAddress(layer);
   push.weight_mode = static_cast<std::uint32_t>(config().weight_mode);
   push.flags = (config().weight_dropoff ? gpu::kFlagWeightDropoff : 0u) |
                (has_color ? gpu::kFlagHasColor : 0u) |
@@ -192,9 +196,42 @@ void DeviceFusion::runIntegration(const FrameCamera& camera, bool has_color,
   cmd.dispatch(groups_x, divideUp(touched, groups_x));
   cmd.barrier();
   cmd.writeTimestamp(timer_, 1);
+  if (track_touched_) recordTouchedGather(cmd, touched);
   cmd.end();
   cmd.submitAndWait();
   stats.integrate_ms += timer_.elapsedMs(0, 1);
+  if (track_touched_) readTouchedBlocks(touched);
+}
+
+void DeviceFusion::setTrackTouchedBlocks(bool on) {
+  track_touched_ = on;
+  last_touched_.clear();
+  if (on && touched_keys_pipeline_.pipeline() == VK_NULL_HANDLE) {
+    touched_keys_pipeline_ = vk::ComputePipeline::create(context_, "gather_touched_blocks", 4, 0);
+  }
+}
+
+void DeviceFusion::recordTouchedGather(vk::CommandBuffer& cmd, std::uint32_t touched) {
+  const std::uint64_t bytes = std::uint64_t{touched} * 8;
+  if (!touched_keys_.valid() || touched_keys_.size() < bytes) {
+    touched_keys_ = vk::Buffer::create(context_, std::max<std::uint64_t>(bytes * 3 / 2, 4096),
+                                       vk::MemoryUsage::kHostReadback, "touched block keys");
+  }
+  // A member: the set must outlive the submission, which runIntegration makes after this returns.
+  touched_keys_set_ = vk::DescriptorSet::create(
+      context_, touched_keys_pipeline_,
+      {&map_.hashEntries(), &touched_, &map_.counters(), &touched_keys_});
+  cmd.bind(touched_keys_pipeline_, touched_keys_set_);
+  const std::uint32_t groups = divideUp(touched, 256);
+  const std::uint32_t groups_x = std::min(groups, kMaxGroupsPerDimension);
+  cmd.dispatch(groups_x, divideUp(groups, groups_x));
+  cmd.barrier();
+}
+
+void DeviceFusion::readTouchedBlocks(std::uint32_t touched) {
+  const auto* keys = static_cast<const std::uint64_t*>(touched_keys_.mapped());
+  last_touched_.resize(touched);
+  for (std::uint32_t i = 0; i < touched; ++i) last_touched_[i] = unpackBlockKey(keys[i]);
 }
 
 }  // namespace strata

@@ -35,7 +35,8 @@ struct AllocatePush {
   std::uint32_t hash_mask;
   std::uint32_t pass_id;
   std::uint32_t touched_capacity;
-  std::uint32_t pad[3];
+  std::uint32_t free_space_stride;
+  std::uint32_t pad[2];
 };
 static_assert(sizeof(AllocatePush) == 128 && offsetof(AllocatePush, truncation_m) == 96,
               "AllocatePush layout");
@@ -87,6 +88,51 @@ struct RaycastPush {
 };
 static_assert(sizeof(RaycastPush) == 128 && offsetof(RaycastPush, pool_address) == 112,
               "RaycastPush layout");
+
+/// esdf_gather_sites.comp and esdf_scatter.comp.
+struct EsdfBlockPush {
+  std::uint64_t box_address;
+  std::uint64_t tsdf_pool_address;
+  std::uint64_t esdf_pool_address;
+  std::uint32_t box_nx, box_ny, box_nz;
+  std::uint32_t block_count;
+  std::uint32_t first_block;
+  float voxel_size_m;
+  float site_threshold_m;
+  float min_weight;
+  float max_distance_m;
+  std::uint32_t pad0;
+};
+static_assert(sizeof(EsdfBlockPush) == 64 && offsetof(EsdfBlockPush, box_nx) == 24 &&
+                  offsetof(EsdfBlockPush, max_distance_m) == 56,
+              "EsdfBlockPush layout");
+
+/// esdf_edt_pass.comp.
+struct EsdfEdtPush {
+  std::uint64_t box_address;
+  std::uint64_t reserved;
+  std::uint32_t line_count;
+  std::uint32_t first_line;
+  std::uint32_t line_length;
+  std::uint32_t lines_a;
+  std::uint32_t stride_a;
+  std::uint32_t stride_b;
+  std::uint32_t stride_line;
+  std::uint32_t axis;
+  std::uint32_t max_d2;
+  std::uint32_t first_a;
+  std::uint32_t first_b;
+  std::uint32_t pad0;
+};
+static_assert(sizeof(EsdfEdtPush) == 64 && offsetof(EsdfEdtPush, first_b) == 56,
+              "EsdfEdtPush layout");
+
+/// esdf_slot_keys.comp.
+struct EsdfSlotKeysPush {
+  std::uint32_t entry_count;
+  std::uint32_t slot_capacity;
+};
+static_assert(sizeof(EsdfSlotKeysPush) == 8, "EsdfSlotKeysPush layout");
 
 inline void storeMatrix(const Mat4& m, float out[16]) {
   for (int i = 0; i < 16; ++i) out[i] = m.data()[i];

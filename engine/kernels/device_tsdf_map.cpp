@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstring>
 #include <sstream>
+#include <unordered_map>
 
 #include "core/error.h"
 #include "kernels/device_layout.h"
@@ -11,6 +12,7 @@ namespace strata {
 namespace {
 
 constexpr std::uint64_t kBlockBytes = sizeof(TsdfBlock);
+constexpr std::uint64_t kLabelBlockBytes = kVoxelsPerBlock * DeviceTsdfMap::kLabelBytesPerVoxel;
 // One binding sees at most 128 MiB on lavapipe; 2^23 entries of 16 bytes is exactly that.
 constexpr std::uint32_t kMaxHashCapacity = 1u << 23;
 constexpr std::uint32_t kMaxProbes = 128;  // matches kMaxHashProbes in map_layout.glsl
@@ -61,10 +63,10 @@ void DeviceTsdfMap::writeCounters() {
   vk::upload(context_, counters_, &counters, sizeof(counters));
 }
 
-std::vector<std::pair<std::uint64_t, std::uint32_t>> DeviceTsdfMap::readTable() {
+DeviceTsdfMap::KeySlots DeviceTsdfMap::readTable() {
   std::vector<gpu::HashEntry> table(hash_capacity_);
   vk::download(context_, entries_, table.data(), table.size() * sizeof(gpu::HashEntry));
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> key_slots;
+  KeySlots key_slots;
   key_slots.reserve(block_count_);
   for (const gpu::HashEntry& entry : table) {
     if (entry.key != kEmptyBlockKey) key_slots.emplace_back(entry.key, entry.slot);
@@ -72,8 +74,7 @@ std::vector<std::pair<std::uint64_t, std::uint32_t>> DeviceTsdfMap::readTable() 
   return key_slots;
 }
 
-void DeviceTsdfMap::writeTable(const std::vector<std::pair<std::uint64_t, std::uint32_t>>& key_slots,
-                               std::uint32_t capacity) {
+void DeviceTsdfMap::writeTable(const KeySlots& key_slots, std::uint32_t capacity) {
   std::vector<gpu::HashEntry> table;
   capacity = nextPowerOfTwo(std::max<std::uint32_t>(capacity, 64));
   while (!buildTable(key_slots, capacity, table)) {
@@ -126,25 +127,37 @@ void DeviceTsdfMap::growPool(std::uint32_t min_blocks) {
   }
   const std::uint64_t wanted = std::max<std::uint64_t>(
       min_blocks, std::min<std::uint64_t>(max_blocks, std::uint64_t{block_capacity_} * 2));
-  vk::Buffer pool;
+  // Every layer is allocated before any is replaced, so a failure leaves the map as it was.
+  std::vector<vk::Buffer> tsdf(std::max<std::size_t>(tsdf_layers_.size(), 1));
+  std::vector<vk::Buffer> labels(label_layers_.size());
   try {
-    pool = vk::Buffer::create(context_, wanted * kBlockBytes, vk::MemoryUsage::kDeviceLocal,
-                              "TSDF voxel pool");
+    for (vk::Buffer& b : tsdf) b = makeLayer(wanted, kBlockBytes, "TSDF voxel pool", false);
+    for (vk::Buffer& b : labels) b = makeLayer(wanted, kLabelBlockBytes, "label pool", false);
   } catch (const DeviceError& e) {
     std::ostringstream msg;
-    msg << "TSDF pool full: growing to " << wanted << " blocks for the " << min_blocks
-        << " blocks asked for failed (" << e.what() << ")";
+    msg << "TSDF pool full: growing " << tsdf.size() + labels.size() << " layer(s) to " << wanted
+        << " blocks for the " << min_blocks << " blocks asked for failed (" << e.what() << ")";
     throw DeviceError(msg.str());
   }
   vk::CommandBuffer cmd = vk::CommandBuffer::create(context_);
   cmd.begin();
-  const std::uint64_t used_bytes = std::uint64_t{block_count_} * kBlockBytes;
-  if (used_bytes > 0) cmd.copy(pool_, pool, used_bytes);
-  cmd.fill(pool, 0u, used_bytes, pool.size() - used_bytes);  // new blocks start unobserved
+  auto copyLayer = [&](const vk::Buffer& from, vk::Buffer& to, std::uint64_t block_bytes) {
+    const std::uint64_t used_bytes = std::uint64_t{block_count_} * block_bytes;
+    if (used_bytes > 0) cmd.copy(from, to, used_bytes);
+    cmd.fill(to, 0u, used_bytes, to.size() - used_bytes);  // new blocks start unobserved
+  };
+  if (tsdf_layers_.empty()) cmd.fill(tsdf[0], 0u);
+  for (std::size_t i = 0; i < tsdf_layers_.size(); ++i) {
+    copyLayer(tsdf_layers_[i], tsdf[i], kBlockBytes);
+  }
+  for (std::size_t i = 0; i < labels.size(); ++i) {
+    copyLayer(label_layers_[i], labels[i], kLabelBlockBytes);
+  }
   cmd.barrier();
   cmd.end();
   cmd.submitAndWait();
-  pool_ = std::move(pool);
+  tsdf_layers_ = std::move(tsdf);
+  label_layers_ = std::move(labels);
   block_capacity_ = static_cast<std::uint32_t>(wanted);
 }
 
@@ -169,44 +182,39 @@ void DeviceTsdfMap::commitBlockCount(std::uint32_t block_count) {
   }
 }
 
-void DeviceTsdfMap::download(TsdfMap& out) {
+void DeviceTsdfMap::download(TsdfMap& out, int layer) {
+  const vk::Buffer& pool = tsdfLayer(layer);
   out = TsdfMap(config_);
   const auto key_slots = readTable();
-  std::vector<TsdfBlock> pool(block_count_);
-  if (block_count_ > 0) vk::download(context_, pool_, pool.data(), pool.size() * kBlockBytes);
+  std::vector<TsdfBlock> blocks(block_count_);
+  if (block_count_ > 0) vk::download(context_, pool, blocks.data(), blocks.size() * kBlockBytes);
   for (const auto& [key, slot] : key_slots) {
     if (slot >= block_count_) {
       throw DeviceError("device map is inconsistent: a block has slot " + std::to_string(slot) +
                         " beyond the " + std::to_string(block_count_) + " allocated blocks");
     }
-    out.allocateBlock(unpackBlockKey(key)) = pool[slot];
+    out.allocateBlock(unpackBlockKey(key)) = blocks[slot];
   }
 }
 
 void DeviceTsdfMap::upload(const TsdfMap& map) {
   const std::vector<BlockIndex> indices = map.sortedBlockIndices();
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> key_slots;
-  std::vector<TsdfBlock> pool;
+  KeySlots key_slots;
+  std::vector<TsdfBlock> blocks;
   key_slots.reserve(indices.size());
-  pool.reserve(indices.size());
+  blocks.reserve(indices.size());
   for (const BlockIndex& b : indices) {
-    key_slots.emplace_back(packBlockKey(b), static_cast<std::uint32_t>(pool.size()));
-    pool.push_back(*map.findBlock(b));
+    key_slots.emplace_back(packBlockKey(b), static_cast<std::uint32_t>(blocks.size()));
+    blocks.push_back(*map.findBlock(b));
   }
-  const auto count = static_cast<std::uint32_t>(pool.size());
+  const auto count = static_cast<std::uint32_t>(blocks.size());
   block_count_ = 0;
   if (count > block_capacity_) growPool(count);
   writeTable(key_slots, std::max(config_.initial_hash_capacity, nextPowerOfTwo(count * 2 + 1)));
-  if (count > 0) vk::upload(context_, pool_, pool.data(), pool.size() * kBlockBytes);
-  // Slots past the uploaded blocks may hold an earlier map: clear them for future allocations.
-  const std::uint64_t used_bytes = std::uint64_t{count} * kBlockBytes;
-  if (used_bytes < pool_.size()) {
-    vk::CommandBuffer cmd = vk::CommandBuffer::create(context_);
-    cmd.begin();
-    cmd.fill(pool_, 0u, used_bytes, pool_.size() - used_bytes);
-    cmd.end();
-    cmd.submitAndWait();
-  }
+  if (count > 0) vk::upload(context_, tsdfLayer(0), blocks.data(), blocks.size() * kBlockBytes);
+  // Slots past the uploaded blocks may hold an earlier map: clear them for future allocations;
+  // the other layers describe no block of the new index.
+  zeroLayers(count, 0);
   block_count_ = count;
   writeCounters();
 }

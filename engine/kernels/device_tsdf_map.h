@@ -3,7 +3,14 @@
 // slot (kernels insert with 64-bit atomics), and the TSDF voxel pool addressed by device address.
 // Both grow on demand; when the device cannot hold more, an error says how many blocks were asked
 // for and the map stays as it was.
+// Layers share the block index: TSDF layer 0 is the map every kernel uses by default; more TSDF
+// layers (one per mapping session, a static estimate) and label layers (one uint32 per voxel) can
+// be added. Every layer holds one block per slot and all grow together, so a block allocated for
+// one layer exists (unobserved, label 0) in all the others.
 #include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "map/map_config.h"
 #include "map/tsdf_map.h"
@@ -22,14 +29,29 @@ class DeviceTsdfMap {
   std::uint32_t blockCapacity() const { return block_capacity_; }
   std::uint32_t hashCapacity() const { return hash_capacity_; }
   std::uint32_t hashMask() const { return hash_capacity_ - 1; }
-  std::uint64_t poolAddress() const { return pool_.deviceAddress(); }
-  std::uint64_t deviceBytes() const { return pool_.size() + entries_.size() + counters_.size(); }
-  /// Bytes of device memory per voxel of the pool (voxel payload only).
+  std::uint64_t poolAddress(int layer = 0) const { return tsdfLayer(layer).deviceAddress(); }
+  /// Pools of every layer, hash table and counters.
+  std::uint64_t deviceBytes() const;
+  /// Bytes of device memory per voxel of one TSDF layer (voxel payload only).
   static constexpr std::uint32_t kBytesPerVoxel = sizeof(TsdfVoxel);
+  /// Bytes per voxel of a label layer.
+  static constexpr std::uint32_t kLabelBytesPerVoxel = sizeof(std::uint32_t);
 
   vk::Buffer& hashEntries() { return entries_; }
   vk::Buffer& counters() { return counters_; }
-  vk::Buffer& pool() { return pool_; }
+  /// TSDF layer `layer`: slot s holds TsdfVoxel[512] at s * 6144 bytes.
+  vk::Buffer& pool(int layer = 0) { return tsdfLayer(layer); }
+
+  int tsdfLayerCount() const { return static_cast<int>(tsdf_layers_.size()); }
+  int labelLayerCount() const { return static_cast<int>(label_layers_.size()); }
+  /// Adds a TSDF layer, every voxel unobserved; returns its index.
+  int addTsdfLayer();
+  /// Adds a label layer, every voxel 0; returns its index. Slot s holds uint32[512] at s * 2048.
+  int addLabelLayer();
+  vk::Buffer& labelPool(int layer) { return labelLayer(layer); }
+  std::uint64_t labelPoolAddress(int layer) const { return labelLayer(layer).deviceAddress(); }
+  /// Every allocated block with its slot (downloads the hash table).
+  std::vector<std::pair<BlockIndex, std::uint32_t>> blockSlots();
 
   /// Record that the device handed out `block_count` slots. Grows the pool (device-side copy) when
   /// they exceed capacity; when the device cannot hold them, removes the blocks that have no slot
@@ -40,23 +62,38 @@ class DeviceTsdfMap {
   /// Grow the table when it is more than half full, so probes stay short.
   void maintainLoadFactor();
 
-  /// Explicit device->host copy of the whole map.
-  void download(TsdfMap& out);
-  /// Replaces the device map with `map` (same config required).
+  /// Explicit device->host copy of one TSDF layer (every allocated block, unobserved ones too).
+  void download(TsdfMap& out, int layer = 0);
+  /// Replaces the device map with `map` (same config required): the block index becomes map's,
+  /// TSDF layer 0 its voxels, every other layer unobserved / label 0.
   void upload(const TsdfMap& map);
+  /// Replaces one TSDF layer with `map`, keeping the block index and the other layers: map's
+  /// blocks missing from the index are allocated (unobserved in the other layers), allocated
+  /// blocks that map lacks become unobserved in this layer.
+  void uploadLayer(const TsdfMap& map, int layer);
 
  private:
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> readTable();
-  void writeTable(const std::vector<std::pair<std::uint64_t, std::uint32_t>>& key_slots,
-                  std::uint32_t capacity);
+  using KeySlots = std::vector<std::pair<std::uint64_t, std::uint32_t>>;
+  KeySlots readTable();
+  void writeTable(const KeySlots& key_slots, std::uint32_t capacity);
   void growPool(std::uint32_t min_blocks);
   void writeCounters();
+  /// Buffer of `blocks` blocks for a layer of `block_bytes` per block (zero-filled when `zero`).
+  vk::Buffer makeLayer(std::uint64_t blocks, std::uint64_t block_bytes, const std::string& name,
+                       bool zero);
+  /// Zeroes TSDF layer 0 from slot `first_block_0` and every other layer from `first_block`.
+  void zeroLayers(std::uint32_t first_block_0, std::uint32_t first_block);
+  vk::Buffer& tsdfLayer(int layer);
+  const vk::Buffer& tsdfLayer(int layer) const;
+  vk::Buffer& labelLayer(int layer);
+  const vk::Buffer& labelLayer(int layer) const;
 
   vk::Context& context_;
   MapConfig config_;
   vk::Buffer entries_;
   vk::Buffer counters_;
-  vk::Buffer pool_;
+  std::vector<vk::Buffer> tsdf_layers_;   // [0]: the map every kernel uses by default
+  std::vector<vk::Buffer> label_layers_;
   std::uint32_t block_count_ = 0;
   std::uint32_t block_capacity_ = 0;
   std::uint32_t hash_capacity_ = 0;

@@ -51,6 +51,9 @@ void MapConfig::validate() const {
     throw InputError("invalid map config: unknown distance_mode");
   }
   requirePositive(normal_max_relative_jump, "normal_max_relative_jump");
+  if (allocate_free_space && free_space_pixel_stride == 0) {
+    throw InputError("invalid map config: free_space_pixel_stride must be positive");
+  }
   if (initial_block_capacity == 0) {
     throw InputError("invalid map config: initial_block_capacity must be positive");
   }
@@ -66,7 +69,8 @@ std::string MapConfig::describe() const {
       << "] m, weight "
       << (weight_mode == WeightMode::kConstant ? "constant" : "1/z^2")
       << (weight_dropoff ? " with drop-off" : "") << ", distance "
-      << (distance_mode == DistanceMode::kPointToPlane ? "point-to-plane" : "along the ray");
+      << (distance_mode == DistanceMode::kPointToPlane ? "point-to-plane" : "along the ray")
+      << (allocate_free_space ? ", free space allocated" : "");
   return out.str();
 }
 

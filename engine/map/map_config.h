@@ -43,6 +43,12 @@ struct MapConfig {
   /// Initial capacities; both grow on demand (pool by reallocation, hash by rehash).
   std::uint32_t initial_block_capacity = 8192;
   std::uint32_t initial_hash_capacity = 1u << 16;  // power of two
+  /// Also allocate (and so observe) the free space between the camera and the surfaces, on a
+  /// sparse pixel grid: the ESDF then covers free space, not just the truncation band. Costs
+  /// blocks (memory) and allocation time; planners want it, surface reconstruction does not.
+  bool allocate_free_space = false;
+  /// Every n-th pixel on both axes allocates its free space (blocks are 8 voxels wide).
+  std::uint32_t free_space_pixel_stride = 4;
   /// Device memory budget in blocks (6 KiB each); 0 = as many as one allocation on the device holds.
   /// Fusion stops with an error naming the blocks asked for when a frame needs more.
   std::uint32_t max_block_capacity = 0;

@@ -71,8 +71,10 @@ void putConfig(ByteWriter& w, const MapConfig& c) {
   w.put(static_cast<std::uint32_t>(c.distance_mode));
   w.put(c.normal_max_relative_jump);
   w.put(c.max_block_capacity);
+  w.put(static_cast<std::uint32_t>(c.allocate_free_space ? 1 : 0));
+  w.put(c.free_space_pixel_stride);
 }
-constexpr std::uint32_t kConfigBytes = 52;
+constexpr std::uint32_t kConfigBytes = 60;
 
 MapConfig getConfig(ByteReader& r) {
   MapConfig c;
@@ -89,6 +91,8 @@ MapConfig getConfig(ByteReader& r) {
   c.distance_mode = static_cast<DistanceMode>(r.get<std::uint32_t>("distance_mode"));
   c.normal_max_relative_jump = r.get<float>("normal_max_relative_jump");
   c.max_block_capacity = r.get<std::uint32_t>("max_block_capacity");
+  c.allocate_free_space = r.get<std::uint32_t>("allocate_free_space") != 0;
+  c.free_space_pixel_stride = r.get<std::uint32_t>("free_space_pixel_stride");
   return c;
 }
 

@@ -35,6 +35,19 @@ CLI::App* addFuseCommand(CLI::App& app, FuseOptions& o) {
   fuse->add_option("--render", o.render_path, "Write a shaded rendering from the last pose (PNG)");
   fuse->add_option("--device", o.device, "Vulkan device index or name substring (env STRATA_DEVICE)");
   fuse->add_flag("--reference", o.reference, "Fuse with the C++ reference instead of the device");
+  fuse->add_flag("--esdf", o.esdf,
+                 "Keep the ESDF up to date incrementally while fusing (ESDF ms in the summary)");
+  fuse->add_option("--esdf-png", o.esdf_png_path,
+                   "Write a colour-mapped ESDF slice here at the end (implies --esdf)");
+  fuse->add_option("--slice-z", o.slice_z_m, "Height of the ESDF slice, metres")
+      ->capture_default_str();
+  // NOTE: callbacks, not an int flag: CLI11 writes 0 into an int flag that was not given.
+  fuse->add_flag_callback(
+      "--free-space", [&o] { o.free_space = 1; },
+      "Also allocate the free space in front of surfaces, so the ESDF covers it (default with "
+      "--esdf)");
+  fuse->add_flag_callback(
+      "--no-free-space", [&o] { o.free_space = 0; }, "Allocate only the surfaces' band");
   fuse->add_flag("--quiet", o.quiet, "No progress bar");
   fuse->add_option("--format", o.dataset_options.format, "Dataset layout: auto | tum | 7scenes")
       ->check(CLI::IsMember({"auto", "tum", "7scenes"}));
@@ -51,13 +64,18 @@ int runFuse(FuseOptions o) {
         o.weight == "inv-z2" ? WeightMode::kInverseDepthSquared : WeightMode::kConstant;
     o.map.distance_mode = o.distance == "along-ray" ? DistanceMode::kAlongRay
                                                     : DistanceMode::kPointToPlane;
+    if (!o.esdf_png_path.empty()) o.esdf = true;
+    // NOTE: a planner's ESDF needs distances in open space, which only allocated blocks carry.
+    if (o.free_space >= 0) o.map.allocate_free_space = o.free_space == 1;
+    if (o.free_space < 0 && o.esdf) o.map.allocate_free_space = true;
     o.map.validate();
     if (o.frames < 0) throw InputError("--frames must be >= 0");
+    if (o.esdf && o.reference) throw InputError("--esdf runs on the device: drop --reference");
     FuseSession session(o);
     const bool complete = session.run();
-    session.writeOutputs();
+    const bool outputs_written = session.writeOutputs();
     session.printSummary();
-    return complete ? 0 : 1;
+    return complete && outputs_written ? 0 : 1;
   } catch (const InputError& e) {
     std::fprintf(stderr, "strata fuse: input error: %s\n", e.what());
     return 2;

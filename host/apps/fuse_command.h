@@ -25,6 +25,10 @@ struct FuseOptions {
   std::string render_path;    // PNG of the map rendered from the last pose
   std::string device;
   bool reference = false;     // fuse with the C++ reference instead of the device
+  bool esdf = false;          // keep the ESDF up to date during fusion (device only)
+  std::string esdf_png_path;  // write an ESDF slice at the end (implies esdf)
+  float slice_z_m = 1.0f;     // height of that slice
+  int free_space = -1;        // map.allocate_free_space: 1 on, 0 off, -1 as set (on with esdf)
   bool quiet = false;
   DatasetOptions dataset_options;
 };

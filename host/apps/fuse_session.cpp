@@ -3,9 +3,11 @@
 #include <sys/resource.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
+#include "apps/esdf_slice.h"
 #include "apps/progress.h"
 #include "apps/views.h"
 #include "core/error.h"
@@ -56,6 +58,11 @@ FuseSession::FuseSession(const FuseOptions& options)
     context_ = vk::Context::create(context_options);
     fusion_ = std::make_unique<DeviceFusion>(*context_, options_.map);
   }
+  if (options_.esdf && fusion_) {
+    // Incremental: each frame marks the blocks it touched dirty (DeviceFusion lists them).
+    fusion_->setTrackTouchedBlocks(true);
+    esdf_ = std::make_unique<DeviceEsdf>(*context_, fusion_->map());
+  }
 }
 
 FuseSession::~FuseSession() = default;
@@ -69,6 +76,7 @@ void FuseSession::fuseFrame(const RgbdFrame& frame) {
     totals_.integrate_ms += stats.integrate_ms;
     totals_.wall_ms += stats.wall_ms;
     totals_.touched_blocks += stats.touched_blocks;
+    if (esdf_) updateEsdf();
   } else {
     const auto start = std::chrono::steady_clock::now();
     integrateFrameReference(map_, frame, dataset_->intrinsics());
@@ -76,6 +84,15 @@ void FuseSession::fuseFrame(const RgbdFrame& frame) {
                          std::chrono::steady_clock::now() - start).count();
   }
   last_pose_ = frame.T_W_C;
+}
+
+void FuseSession::updateEsdf() {
+  esdf_->markDirty(fusion_->lastTouchedBlocks());
+  const EsdfUpdateStats stats = esdf_->updateIncremental();
+  esdf_totals_.device_ms += stats.device_ms;
+  esdf_totals_.wall_ms += stats.wall_ms;
+  esdf_totals_.voxels_updated += stats.voxels_updated;
+  esdf_totals_.blocks_updated += stats.blocks_updated;
 }
 
 bool FuseSession::run() {
@@ -99,6 +116,7 @@ bool FuseSession::run() {
       detail << std::fixed
              << (totals_.normals_ms + totals_.allocate_ms + totals_.integrate_ms) / fused_
              << " ms/frame on device";
+      if (esdf_) detail << " + ESDF " << esdf_totals_.device_ms / fused_ << " ms";
     }
     progress.update(fused_, detail.str());
   }
@@ -107,7 +125,7 @@ bool FuseSession::run() {
   return failure_.empty();
 }
 
-void FuseSession::writeOutputs() {
+bool FuseSession::writeOutputs() {
   if (fusion_) fusion_->map().download(map_);
   if (!options_.mesh_path.empty() || analytic_ != nullptr) mesh_ = extractMesh(map_);
   if (!options_.mesh_path.empty()) {
@@ -119,6 +137,39 @@ void FuseSession::writeOutputs() {
     written_.push_back("map " + options_.map_path);
   }
   if (!options_.render_path.empty() && fused_ > 0) renderView();
+  return options_.esdf_png_path.empty() || writeEsdfSlice();
+}
+
+bool FuseSession::writeEsdfSlice() {
+  EsdfMap esdf;
+  esdf_->download(esdf);
+  EsdfSliceOptions slice;
+  slice.z_m = options_.slice_z_m;
+  slice.max_distance_m = esdf_->config().max_distance_m;
+  try {
+    writeEsdfSlicePng(options_.esdf_png_path, esdf, slice);
+  } catch (const InputError& e) {
+    // NOTE: the fused map is worth more than the picture: keep going, report, exit non-zero.
+    std::fprintf(stderr, "strata fuse: no ESDF slice written: %s\n", e.what());
+    esdf_slice_problem_ = e.what();
+    return false;
+  }
+  written_.push_back("ESDF slice " + options_.esdf_png_path);
+  return true;
+}
+
+std::string FuseSession::esdfSummary() const {
+  if (!esdf_ || fused_ == 0) return "";
+  const double n = static_cast<double>(fused_);
+  std::ostringstream s;
+  s.precision(2);
+  s << std::fixed << " ESDF kept up to date incrementally: " << esdf_totals_.device_ms / n
+    << " ms per frame device time (" << esdf_totals_.wall_ms / n << " ms wall), "
+    << std::llround(esdf_totals_.blocks_updated / n) << " blocks ("
+    << std::llround(static_cast<double>(esdf_totals_.voxels_updated) / n)
+    << " voxels) recomputed per frame.";
+  if (!esdf_slice_problem_.empty()) s << " No ESDF slice: " << esdf_slice_problem_ << ".";
+  return s.str();
 }
 
 void FuseSession::renderView() {
@@ -154,7 +205,7 @@ void FuseSession::printSummary() const {
   } else if (fused_ > 0) {
     s << "C++ reference: " << reference_ms_ / static_cast<double>(fused_) << " ms per frame. ";
   }
-  s << "peak host memory " << peakHostMemoryMiB() << " MiB.";
+  s << "peak host memory " << peakHostMemoryMiB() << " MiB." << esdfSummary();
   if (analytic_ != nullptr) {
     const float voxel_m = map_.config().voxel_size_m;
     const auto tsdf = eval::evaluateTsdf(map_, analytic_->scene(),

@@ -7,6 +7,7 @@
 #include "apps/fuse_command.h"
 #include "io/dataset.h"
 #include "kernels/device_fusion.h"
+#include "kernels/esdf.h"
 #include "map/tsdf_map.h"
 #include "mesh/mesh.h"
 #include "vk/vk.h"
@@ -25,20 +26,28 @@ class FuseSession {
   /// Fuses the frames. Returns false when a frame failed part-way: the error is printed and
   /// everything fused before it is kept (and written by writeOutputs).
   bool run();
-  /// Downloads the map, writes mesh / map / rendering as requested.
-  void writeOutputs();
-  /// One paragraph: frames, blocks, voxels, ms per frame by kernel, memory, device, accuracy.
+  /// Downloads the map, writes mesh / map / rendering / ESDF slice as requested. Returns false
+  /// when an output could not be made (the reason is printed and kept for the summary).
+  bool writeOutputs();
+  /// One paragraph: frames, blocks, voxels, ms per frame by kernel (ESDF too), memory, device,
+  /// accuracy.
   void printSummary() const;
 
  private:
   void fuseFrame(const RgbdFrame& frame);
+  void updateEsdf();
   void renderView();
+  bool writeEsdfSlice();
+  std::string esdfSummary() const;
 
   FuseOptions options_;
   std::unique_ptr<Dataset> dataset_;
   const sim::AnalyticDataset* analytic_ = nullptr;  // set when fusing the built-in scene
   std::unique_ptr<vk::Context> context_;
   std::unique_ptr<DeviceFusion> fusion_;
+  std::unique_ptr<DeviceEsdf> esdf_;  // with --esdf: updated after every frame
+  EsdfUpdateStats esdf_totals_;       // summed over frames
+  std::string esdf_slice_problem_;    // why the ESDF slice was not written
   TsdfMap map_;
   Mesh mesh_;
   std::vector<std::size_t> frame_indices_;

@@ -1,0 +1,65 @@
+#version 450
+// esdf_scatter: writes the ESDF voxels of the listed blocks from the transformed working box and
+// the voxels' own TSDF. Rule: engine/kernels/esdf_rules.h (makeEsdfVoxel): distance =
+// sign(tsdf) * |offset| * voxel, +-max distance and no site flag without a site within reach;
+// unobserved voxels keep the unsigned distance and no observed flag.
+// Workgroup: 8 x 8 x 8, one workgroup per listed block, one invocation per voxel; the ESDF pool is
+// slot-aligned with the TSDF pool.
+// Bindings: 0 ivec4 blocks[] (xyz: block relative to the box in blocks, w: pool slot),
+//           1 uint box cells[], 2 TsdfVoxel TSDF pool[], 3 EsdfVoxel ESDF pool[]
+//           (each by binding or by device address, esdf_access.glsl).
+// Specialization: 0 kBoxByAddress, 1 kPoolsByAddress (esdf_access.glsl).
+// Dispatch: (min(n, 65535), ceil(n / 65535)) groups for n listed blocks; extra groups exit.
+// Push constants: EsdfBlockPush (engine/kernels/device_layout.h).
+#extension GL_GOOGLE_include_directive : require
+#include "map_layout.glsl"
+#include "esdf_layout.glsl"
+
+layout(local_size_x = 8, local_size_y = 8, local_size_z = 8) in;
+
+layout(std430, binding = 0) readonly buffer Blocks { ivec4 blocks[]; };
+
+layout(push_constant, std430) uniform Push {
+  uint64_t box_address;
+  uint64_t tsdf_pool_address;
+  uint64_t esdf_pool_address;
+  uint box_nx;
+  uint box_ny;
+  uint box_nz;
+  uint block_count;
+  uint first_block;
+  float voxel_size_m;
+  float site_threshold_m;
+  float min_weight;
+  float max_distance_m;
+  uint pad0;
+} pc;
+
+#define ESDF_BOX_BINDING 1
+#define ESDF_TSDF_POOL_BINDING 2
+#define ESDF_ESDF_POOL_BINDING 3
+#include "esdf_access.glsl"
+
+void main() {
+  uint group = gl_WorkGroupID.x + gl_WorkGroupID.y * gl_NumWorkGroups.x;
+  if (group >= pc.block_count) return;
+  ivec4 listed = blocks[pc.first_block + group];
+  ivec3 local = ivec3(gl_LocalInvocationID);
+  uvec3 box_dims = uvec3(pc.box_nx, pc.box_ny, pc.box_nz);
+  uint v = uint(local.x + kBlockEdge * (local.y + kBlockEdge * local.z));
+  TsdfVoxel voxel = loadTsdfVoxel(uint(listed.w), v);
+  uint cell = loadBoxCell(boxCellOfVoxel(listed.xyz, local, box_dims));
+
+  bool observed = voxel.weight >= pc.min_weight;
+  EsdfVoxel out_voxel;
+  out_voxel.distance_m = pc.max_distance_m;
+  out_voxel.site_and_flags = 0u;
+  if (cell != kEsdfNoSite) {
+    float d2 = float(squaredLength(unpackSiteOffset(cell)));
+    out_voxel.distance_m = min(sqrt(d2) * pc.voxel_size_m, pc.max_distance_m);
+    out_voxel.site_and_flags = kEsdfHasSiteBit | cell;
+  }
+  if (observed) out_voxel.site_and_flags |= kEsdfObservedBit;
+  if (observed && voxel.tsdf_m < 0.0) out_voxel.distance_m = -out_voxel.distance_m;
+  storeEsdfVoxel(uint(listed.w), v, out_voxel);
+}
