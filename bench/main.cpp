@@ -2,6 +2,7 @@
 // progress on stderr.
 #include <CLI/CLI.hpp>
 
+#include "diff_command.h"
 #include "esdf_command.h"
 #include "fuse_command.h"
 #include "sim_command.h"
@@ -15,6 +16,8 @@ int main(int argc, char** argv) {
   CLI::App* sim = strata::bench::addSimCommand(app, sim_options);
   strata::bench::EsdfBenchOptions esdf_options;
   CLI::App* esdf = strata::bench::addEsdfCommand(app, esdf_options);
+  strata::bench::DiffBenchOptions diff_options;
+  CLI::App* diff = strata::bench::addDiffCommand(app, diff_options);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -23,5 +26,6 @@ int main(int argc, char** argv) {
   if (fuse->parsed()) return strata::bench::runFuseBench(fuse_options);
   if (sim->parsed()) return strata::bench::runSimBench(sim_options);
   if (esdf->parsed()) return strata::bench::runEsdfBench(esdf_options);
+  if (diff->parsed()) return strata::bench::runDiffBench(diff_options);
   return 2;
 }

@@ -50,7 +50,7 @@ void DeviceTsdfMap::zeroLayers(std::uint32_t first_block_0, std::uint32_t first_
 }
 
 void DeviceTsdfMap::uploadLayer(const TsdfMap& map, int layer) {
-  vk::Buffer& target = tsdfLayer(layer);
+  tsdfLayer(layer);  // throws InputError for a layer the map lacks, before anything changes
   KeySlots key_slots = readTable();
   std::unordered_map<std::uint64_t, std::uint32_t> slot_of(key_slots.begin(), key_slots.end());
   std::uint32_t count = block_count_;
@@ -68,7 +68,8 @@ void DeviceTsdfMap::uploadLayer(const TsdfMap& map, int layer) {
   std::vector<TsdfBlock> blocks(count);
   for (TsdfBlock& block : blocks) block.fill(TsdfVoxel{});
   for (const auto& [index, block] : map.blocks()) blocks[slot_of.at(packBlockKey(index))] = block;
-  if (count > 0) vk::upload(context_, target, blocks.data(), blocks.size() * kBlockBytes);
+  // Looked up only now: growing the pool replaced every layer's buffer.
+  if (count > 0) vk::upload(context_, tsdfLayer(layer), blocks.data(), blocks.size() * kBlockBytes);
 }
 
 int DeviceTsdfMap::addTsdfLayer() {

@@ -3,19 +3,23 @@
 #include <CLI/CLI.hpp>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <future>
 
 #include "apps/demo_report.h"
+#include "apps/diff_outputs.h"
+#include "apps/diff_pipeline.h"
 #include "apps/progress.h"
 #include "apps/sim_setup.h"
 #include "apps/views.h"
+#include "change/evaluation_session.h"
+#include "change/evaluation_world.h"
 #include "core/error.h"
 #include "eval/accuracy.h"
 #include "io/image_io.h"
 #include "kernels/raycast.h"
-#include "kernels/device_fusion.h"
-#include "mesh/extract_mesh.h"
 #include "mesh/ply.h"
 
 namespace strata::apps {
@@ -23,50 +27,117 @@ namespace {
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
+using Sessions = std::vector<std::unique_ptr<change::RecordingSession>>;
 
 double secondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-SessionResult runSession(vk::Context& context, const sim::SimSessionDataset& session,
-                         const MapConfig& map_config, const fs::path& out, ProgressBar& progress,
-                         std::size_t& done) {
-  SessionResult result;
-  result.session = session.session();
-  result.frames = session.size();
-  DeviceFusion fusion(context, map_config);
-  for (std::size_t i = 0; i < session.size(); ++i) {
-    const auto render_start = Clock::now();
-    const RgbdFrame frame = session.load(i);
-    result.render_s += secondsSince(render_start);
-    const FrameStats stats = fusion.integrate(frame, session.intrinsics());
-    result.fuse_wall_ms += stats.wall_ms;
-    result.fuse_device_ms += stats.normals_ms + stats.allocate_ms + stats.integrate_ms;
-    progress.update(++done);
-  }
-  TsdfMap map(map_config);
-  fusion.map().download(map);
-  result.blocks = map.blockCount();
-  const Mesh mesh = extractMesh(map);
-  result.mesh_vertices = mesh.vertices.size();
+/// A half-resolution view of a session's own map from its first pose (host raycast: the device
+/// map's layer 0 is the static map).
+ColorImage sessionView(const TsdfMap& map, const sim::SimSessionDataset& session) {
+  CameraIntrinsics k = session.intrinsics();
+  k.width_px /= 2;
+  k.height_px /= 2;
+  k.fx_px /= 2;
+  k.fy_px /= 2;
+  k.cx_px = (k.cx_px + 0.5f) / 2 - 0.5f;
+  k.cy_px = (k.cy_px + 0.5f) / 2 - 0.5f;
+  const Eigen::Isometry3d& T_W_C = session.givenPoses().front();
+  return shadedView(raycastReference(map, k, T_W_C), T_W_C);
+}
+
+/// Accuracy against the session's true geometry, and the per-session files.
+SessionResult sessionResult(const DiffSession& fused, const TsdfMap& map,
+                            const sim::SimSessionDataset& session, const fs::path& out) {
+  SessionResult r;
+  r.session = session.session();
+  r.frames = fused.frames;
+  r.render_s = fused.load_s;
+  r.fuse_wall_ms = fused.fuse_wall_ms;
+  r.fuse_device_ms = fused.fuse_device_ms;
+  r.blocks = map.blockCount();
+  r.mesh_vertices = fused.surface.mesh.vertices.size();
   const auto truth = [&](const Eigen::Vector3d& p) {
     return static_cast<double>(session.scene().signedDistance(p.cast<float>()));
   };
-  result.tsdf = eval::evaluateTsdf(map, truth, 0.5f * map_config.truncationDistance());
-  result.mesh = eval::evaluateMesh(mesh, truth, map_config.voxel_size_m);
+  r.tsdf = eval::evaluateTsdf(map, truth, 0.5f * map.config().truncationDistance());
+  r.mesh = eval::evaluateMesh(fused.surface.mesh, truth, map.config().voxel_size_m);
+  r.changed_ids = session.world().session(session.session()).changedIds();
+  r.objects = fused.objects.size();
   const std::string stem = "session_" + std::to_string(session.session());
-  writePly((out / (stem + "_mesh.ply")).string(), mesh);
-  // A picture of the fused map from the session's first pose.
-  RaycastKernel raycast(context);
-  const Eigen::Isometry3d& T_W_C = session.givenPoses().front();
-  writeColorPng((out / (stem + "_view.png")).string(),
-                shadedView(raycast.run(fusion.map(), session.intrinsics(), T_W_C), T_W_C));
+  writePly((out / (stem + "_mesh.ply")).string(), fused.surface.mesh);
   writePly((out / (stem + "_truth.ply")).string(), session.world().sessionMesh(session.session()));
-  result.changed_ids = session.world().session(session.session()).changedIds();
-  return result;
+  writeColorPng((out / (stem + "_view.png")).string(), sessionView(map, session));
+  return r;
+}
+
+change::WorldEvaluation evaluate(const sim::World& world, const DiffResult& result,
+                                 const Sessions& sessions, const change::ChangeConfig& config) {
+  std::vector<std::vector<change::DiscoveredObject>> objects;
+  std::vector<const change::VisibleSurface*> seen;
+  for (std::size_t s = 0; s < sessions.size(); ++s) {
+    objects.push_back(result.sessions[s].objects);
+    seen.push_back(&sessions[s]->seen());
+  }
+  change::EvaluationConfig eval_config;
+  // Constant weights: a voxel is observed from min_weight frames on; judge the truth alike.
+  eval_config.min_views = std::max(1, static_cast<int>(std::ceil(config.min_weight)));
+  return change::evaluateWorld(world, objects, result.static_mesh, seen, eval_config);
+}
+
+/// Fuses every session (recording what it saw) and runs change detection.
+DiffResult detectChanges(vk::Context& context, const MapConfig& map_config, const DiffRunInfo& info,
+                         const Sessions& sessions, bool quiet, std::vector<TsdfMap>& maps) {
+  std::size_t total = 0, done = 0;
+  for (const auto& session : sessions) total += session->size();
+  DiffPipeline pipeline(context, map_config, info.change, info.objects);
+  ProgressBar progress("simulate + fuse + detect changes", total, !quiet);
+  for (const auto& session : sessions) pipeline.addSession(*session, session->name(), progress, done);
+  progress.finish();
+  return pipeline.finish(&maps);
 }
 
 }  // namespace
+
+DemoReport runDemoPipeline(const DemoOptions& o) {
+  const auto start = Clock::now();
+  const auto world = loadWorld(o.world, o.seed, o.sessions);
+  const sim::SimSessionConfig config = sessionConfig(30.0, o.frames, !o.no_noise, false);
+  MapConfig map_config = changeMapConfig(o.voxel_size_m);
+  map_config.weight_mode = WeightMode::kConstant;  // min_weight counts frames
+  DiffRunInfo info;
+  info.change.min_weight = o.min_weight;
+  vk::ContextOptions context_options;
+  context_options.device_selector = o.device;
+  const auto context = vk::Context::create(context_options);
+  info.device = context->deviceName();
+  info.map_config = map_config.describe();
+  const fs::path out(o.out_dir);
+  fs::create_directories(out);
+  Sessions sessions;
+  for (int s = 0; s < world->sessionCount(); ++s) {
+    sessions.push_back(std::make_unique<change::RecordingSession>(
+        std::make_shared<sim::SimSessionDataset>(world, s, config)));
+  }
+  std::vector<TsdfMap> maps;
+  const DiffResult result = detectChanges(*context, map_config, info, sessions, o.quiet, maps);
+  const DiffFiles files = writeDiffFiles(result, o.out_dir);
+  DemoReport report{world->name(), world->seed(), info.map_config, info.device};
+  // Sessions in parallel: the ground-truth distance queries of the accuracy dominate, and the
+  // scenes answer them from any thread.
+  std::vector<std::future<SessionResult>> results;
+  for (std::size_t s = 0; s < sessions.size(); ++s) {
+    results.push_back(std::async(std::launch::async, [&, s] {
+      return sessionResult(result.sessions[s], maps[s], sessions[s]->session(), out);
+    }));
+  }
+  for (auto& r : results) report.sessions.push_back(r.get());
+  report.evaluation = evaluate(*world, result, sessions, info.change);
+  report.total_s = info.total_s = secondsSince(start);
+  writeDemoReport(report, result, files, info, (out / "report.json").string());
+  return report;
+}
 
 CLI::App* addDemoCommand(CLI::App& app, DemoOptions& o) {
   CLI::App* demo = app.add_subcommand("demo", "Multi-session demo on a synthetic world");
@@ -76,6 +147,9 @@ CLI::App* addDemoCommand(CLI::App& app, DemoOptions& o) {
   demo->add_option("--seed", o.seed, "Override the world's seed");
   demo->add_option("--frames", o.frames, "Frames per session")->capture_default_str();
   demo->add_option("--voxel-size", o.voxel_size_m, "Voxel edge, metres")->capture_default_str();
+  demo->add_option("--min-weight", o.min_weight,
+                   "Frames a voxel must be seen in to count as observed")
+      ->capture_default_str();
   demo->add_flag("--no-noise", o.no_noise, "Exact depth");
   demo->add_option("--device", o.device, "Vulkan device index or name substring");
   demo->add_flag("--quiet", o.quiet, "No progress bar");
@@ -84,32 +158,7 @@ CLI::App* addDemoCommand(CLI::App& app, DemoOptions& o) {
 
 int runDemo(const DemoOptions& o) {
   try {
-    const auto start = Clock::now();
-    const auto world = loadWorld(o.world, o.seed, o.sessions);
-    const sim::SimSessionConfig config = sessionConfig(30.0, o.frames, !o.no_noise, false);
-    MapConfig map_config;
-    map_config.voxel_size_m = o.voxel_size_m;
-    map_config.validate();
-    vk::ContextOptions context_options;
-    context_options.device_selector = o.device;
-    const auto context = vk::Context::create(context_options);
-    const fs::path out(o.out_dir);
-    fs::create_directories(out);
-    DemoReport report{world->name(), world->seed(), map_config.describe(), context->deviceName()};
-    std::vector<std::unique_ptr<sim::SimSessionDataset>> sessions;
-    std::size_t total = 0;
-    for (int s = 0; s < world->sessionCount(); ++s) {
-      sessions.push_back(std::make_unique<sim::SimSessionDataset>(world, s, config));
-      total += sessions.back()->size();
-    }
-    ProgressBar progress("simulate + fuse", total, !o.quiet);
-    std::size_t done = 0;
-    for (const auto& session : sessions) {
-      report.sessions.push_back(runSession(*context, *session, map_config, out, progress, done));
-    }
-    progress.finish();
-    report.total_s = secondsSince(start);
-    writeDemoReport(report, (out / "report.json").string());
+    const DemoReport report = runDemoPipeline(o);
     std::printf("%s\n", summarizeDemo(report, o.out_dir).c_str());
     return 0;
   } catch (const InputError& e) {

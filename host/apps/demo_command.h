@@ -1,6 +1,8 @@
 #pragma once
 // `strata demo` (and `strata` with no command): the multi-session demo on a synthetic world:
-// simulate every session, fuse each into its own map on the device, write meshes and a report.
+// simulate every session, fuse each into its own layer of a ChangeDetector on the device, discover
+// the objects that moved, score them and the static map against the world's ground truth, and
+// write meshes, label overlays and a report.
 #include <cstdint>
 #include <string>
 
@@ -17,12 +19,22 @@ struct DemoOptions {
   std::uint64_t seed = 0;
   int frames = 60;    // per session, spread over the path
   float voxel_size_m = 0.02f;
+  /// Frames a voxel must be seen in to count as observed (change detection's minimum weight; the
+  /// demo fuses with constant weights). 60 frames spread over a session see most surfaces 3+
+  /// times; the default of 10 suits full-rate recordings.
+  float min_weight = 3.0f;
   bool no_noise = false;
   std::string device;
   bool quiet = false;
 };
 
+struct DemoReport;
+
 CLI::App* addDemoCommand(CLI::App& app, DemoOptions& options);
+/// Prints the summary; returns the exit code (0 done, 2 bad input, 3 device error, 1 other).
 int runDemo(const DemoOptions& options);
+/// The work of runDemo (files written, nothing printed but progress), returning what it measured.
+/// Throws on failure.
+DemoReport runDemoPipeline(const DemoOptions& options);
 
 }  // namespace strata::apps

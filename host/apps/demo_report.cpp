@@ -15,7 +15,29 @@ std::string idList(const std::vector<int>& ids) {
   return out.str();
 }
 
-void writeSession(std::ostringstream& out, const SessionResult& r) {
+void writeCounts(std::ostringstream& out, const change::ObjectCounts& c) {
+  out << "\"precision\": " << c.precision() << ", \"recall\": " << c.recall()
+      << ", \"moved_objects\": " << c.moved << ", \"found\": " << c.found
+      << ", \"segments\": " << c.segments << ", \"false_positives\": " << c.false_positives
+      << ", \"over_segmented\": " << c.over_segmented
+      << ", \"under_segmented\": " << c.under_segmented;
+}
+
+void writeMatches(std::ostringstream& out, const change::SessionObjectEvaluation& e) {
+  out << "[";
+  for (std::size_t i = 0; i < e.objects.size(); ++i) {
+    const change::ObjectMatch& m = e.objects[i];
+    out << (i ? ", " : "") << "{\"id\": " << m.object_id << ", \"name\": " << jsonString(m.name)
+        << ", \"seen_m2\": " << m.visible_area_m2 << ", \"evaluated\": " << m.evaluated
+        << ", \"found\": " << m.found << ", \"segment\": " << m.best_segment
+        << ", \"coverage\": " << m.coverage << ", \"on_object\": " << m.on_object
+        << ", \"segments\": " << m.segments << "}";
+  }
+  out << "]";
+}
+
+void writeSession(std::ostringstream& out, const SessionResult& r,
+                  const change::SessionObjectEvaluation& e) {
   const double n = r.frames > 0 ? static_cast<double>(r.frames) : 1.0;
   out << "    {\"session\": " << r.session << ", \"frames\": " << r.frames
       << ", \"render_fps\": " << (r.render_s > 0 ? r.frames / r.render_s : 0.0)
@@ -27,22 +49,45 @@ void writeSession(std::ostringstream& out, const SessionResult& r) {
       << ", \"mesh_mean_distance_m\": " << r.mesh.mean_distance_m
       << ", \"mesh_p99_distance_m\": " << r.mesh.p99_distance_m
       << ", \"mesh_fraction_within_voxel\": " << r.mesh.fraction_within
-      << ", \"changed_object_ids\": " << idList(r.changed_ids) << "}";
+      << ", \"changed_object_ids\": " << idList(r.changed_ids)
+      << ", \"discovered_objects\": " << r.objects << ",\n     ";
+  writeCounts(out, e.counts);
+  out << ",\n     \"moved_objects_matched\": ";
+  writeMatches(out, e);
+  out << "}";
+}
+
+void writeEvaluation(std::ostringstream& out, const change::WorldEvaluation& e) {
+  out << "  \"evaluation\": {";
+  writeCounts(out, e.totals);
+  const change::StaticMapEvaluation& s = e.static_map;
+  out << ",\n    \"static_seen_points\": " << s.seen_points
+      << ", \"static_completeness\": " << s.completeness
+      << ", \"static_mesh_area_m2\": " << s.mesh_area_m2
+      << ", \"static_ghost_area_m2\": " << s.ghost_area_m2
+      << ", \"static_ghost_share\": " << s.ghostShare() << "},\n";
 }
 
 }  // namespace
 
-void writeDemoReport(const DemoReport& report, const std::string& path) {
+void writeDemoReport(const DemoReport& report, const DiffResult& result, const DiffFiles& files,
+                     const DiffRunInfo& info, const std::string& path) {
   std::ostringstream out;
   out.precision(6);
-  out << "{\n  \"world\": \"" << report.world << "\",\n  \"seed\": " << report.seed
-      << ",\n  \"map\": \"" << report.map_config << "\",\n  \"device\": \"" << report.device
-      << "\",\n  \"total_s\": " << report.total_s << ",\n  \"sessions\": [\n";
+  out << std::boolalpha;
+  out << "{\n  \"world\": " << jsonString(report.world) << ",\n  \"seed\": " << report.seed
+      << ",\n  \"map\": " << jsonString(report.map_config)
+      << ",\n  \"device\": " << jsonString(report.device) << ",\n  \"total_s\": " << report.total_s
+      << ",\n  \"sessions\": [\n";
   for (std::size_t i = 0; i < report.sessions.size(); ++i) {
-    writeSession(out, report.sessions[i]);
+    writeSession(out, report.sessions[i], report.evaluation.sessions.at(i));
     out << (i + 1 < report.sessions.size() ? ",\n" : "\n");
   }
-  out << "  ]\n}\n";
+  out << "  ],\n";
+  writeEvaluation(out, report.evaluation);
+  out << "  \"change_detection\": {\n";
+  writeDiffJsonMembers(out, result, files, info, 4);
+  out << "\n  }\n}\n";
   const std::string text = out.str();
   writeFileAtomically(path, std::vector<std::uint8_t>(text.begin(), text.end()));
 }
@@ -68,9 +113,16 @@ std::string summarizeDemo(const DemoReport& report, const std::string& out_dir) 
     << "|TSDF - SDF| " << 1000.0 * tsdf_error / sessions << " mm near surfaces, "
     << 100.0 * within / sessions << " % of mesh vertices within one voxel of the true surface. ";
   for (const SessionResult& r : report.sessions) {
-    if (r.session > 0) s << "Session " << r.session << " changed objects " << idList(r.changed_ids) << ". ";
+    if (r.session > 0) {
+      s << "Session " << r.session << " changed objects " << idList(r.changed_ids) << ". ";
+    }
   }
-  s << "Wrote per-session meshes (fused and true) and report.json to " << out_dir << "/.";
+  const change::StaticMapEvaluation& st = report.evaluation.static_map;
+  s << "Change detection over all sessions: " << change::describeCounts(report.evaluation.totals)
+    << "; static map: " << 100.0 * st.completeness
+    << " % of the static surface seen within 2 cm of the static mesh, " << 100.0 * st.ghostShare()
+    << " % of its area on moved objects. Wrote the static mesh, per-session meshes (fused and "
+    << "true), views, label overlays, object meshes and report.json to " << out_dir << "/.";
   return s.str();
 }
 

@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "apps/diff_report.h"
+#include "change/evaluation_world.h"
 #include "eval/accuracy.h"
 
 namespace strata::apps {
@@ -19,6 +21,7 @@ struct SessionResult {
   eval::TsdfAccuracy tsdf;
   eval::MeshAccuracy mesh;
   std::vector<int> changed_ids;  // objects changed since the previous session
+  std::size_t objects = 0;       // discovered
 };
 
 struct DemoReport {
@@ -27,11 +30,14 @@ struct DemoReport {
   std::string map_config;
   std::string device;
   std::vector<SessionResult> sessions;
+  change::WorldEvaluation evaluation;  // discovered objects and static map against the truth
   double total_s = 0.0;
 };
 
-/// Writes the report as JSON, atomically.
-void writeDemoReport(const DemoReport& report, const std::string& path);
+/// Writes the report as JSON, atomically: the demo's figures, the evaluation and the change
+/// detection's own members (writeDiffJsonMembers).
+void writeDemoReport(const DemoReport& report, const DiffResult& result, const DiffFiles& files,
+                     const DiffRunInfo& info, const std::string& path);
 /// One paragraph for the terminal.
 std::string summarizeDemo(const DemoReport& report, const std::string& out_dir);
 

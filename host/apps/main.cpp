@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "apps/demo_command.h"
+#include "apps/diff_command.h"
 #include "apps/esdf_command.h"
 #include "apps/fuse_command.h"
 #include "apps/mesh_command.h"
@@ -28,7 +29,7 @@ int listDevices() {
 
 int runDefault() {
   std::printf("strata: no command given; running the multi-session demo on the shipped room "
-              "(see `strata --help` for fuse, sim, demo, mesh, esdf, devices)\n");
+              "(see `strata --help` for fuse, sim, demo, diff, mesh, esdf, devices)\n");
   return strata::apps::runDemo(strata::apps::DemoOptions{});
 }
 
@@ -45,6 +46,8 @@ int main(int argc, char** argv) {
   CLI::App* sim = strata::apps::addSimCommand(app, sim_options);
   strata::apps::DemoOptions demo_options;
   CLI::App* demo = strata::apps::addDemoCommand(app, demo_options);
+  strata::apps::DiffOptions diff_options;
+  CLI::App* diff = strata::apps::addDiffCommand(app, diff_options);
   strata::apps::EsdfOptions esdf_options;
   CLI::App* esdf = strata::apps::addEsdfCommand(app, esdf_options);
   CLI::App* devices = app.add_subcommand("devices", "List the Vulkan devices");
@@ -57,6 +60,7 @@ int main(int argc, char** argv) {
   if (mesh->parsed()) return strata::apps::runMesh(mesh_options);
   if (sim->parsed()) return strata::apps::runSim(sim_options);
   if (demo->parsed()) return strata::apps::runDemo(demo_options);
+  if (diff->parsed()) return strata::apps::runDiff(diff_options);
   if (esdf->parsed()) return strata::apps::runEsdf(esdf_options);
   if (devices->parsed()) return listDevices();
   return runDefault();

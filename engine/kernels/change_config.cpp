@@ -1,0 +1,38 @@
+#include "kernels/change_config.h"
+
+#include <cmath>
+#include <string>
+
+#include "core/error.h"
+
+namespace strata::change {
+namespace {
+
+void require(bool ok, const std::string& what) {
+  if (!ok) throw InputError("ChangeConfig: " + what);
+}
+
+void requireKernel(int voxels, const char* field) {
+  // Radius <= 3 keeps the neighbourhood inside the 3x3x3 blocks around a block (8 voxels wide)
+  // and the shared-memory tile of the device kernels small.
+  require(voxels >= 1 && voxels <= 7 && voxels % 2 == 1,
+          std::string(field) + " must be odd and in [1, 7] voxels, got " + std::to_string(voxels));
+}
+
+}  // namespace
+
+void ChangeConfig::validate(float voxel_size_m) const {
+  require(std::isfinite(voxel_size_m) && voxel_size_m > 0.0f, "voxel size must be > 0");
+  require(std::isfinite(min_weight) && min_weight > 0.0f,
+          "min_weight must be > 0, got " + std::to_string(min_weight));
+  require(std::isfinite(difference_threshold_m) && difference_threshold_m > 0.0f,
+          "difference_threshold_m must be > 0, got " + std::to_string(difference_threshold_m));
+  require(std::isfinite(merge_close_m) && merge_close_m >= 0.0f &&
+              merge_close_m < difference_threshold_m,
+          "merge_close_m must be in [0, difference_threshold_m), got " +
+              std::to_string(merge_close_m));
+  requireKernel(erosion_kernel_voxels, "erosion_kernel_voxels");
+  requireKernel(dilation_kernel_voxels, "dilation_kernel_voxels");
+}
+
+}  // namespace strata::change
