@@ -50,7 +50,10 @@ Eigen::Matrix<double, 1, 6> basisWeights(double u, int n) {
 Eigen::MatrixXd interpolationSystem(int segments) {
   const int n = segments + kDegree;
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, n);
-  for (int k = 0; k <= segments; ++k) A.block(k, k, 1, 6) = basisWeights(0.0, 0);
+  // Knot k < segments starts segment k; the last knot is the end (u = 1) of the last segment.
+  // NOTE: taking it as the start of a segment `segments` wrote a row one column past the matrix.
+  for (int k = 0; k < segments; ++k) A.block(k, k, 1, 6) = basisWeights(0.0, 0);
+  A.block(segments, segments - 1, 1, 6) = basisWeights(1.0, 0);
   A.block(segments + 1, 0, 1, 6) = basisWeights(0.0, 1);
   A.block(segments + 2, 0, 1, 6) = basisWeights(0.0, 2);
   A.block(segments + 3, segments - 1, 1, 6) = basisWeights(1.0, 1);
