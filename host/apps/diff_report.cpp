@@ -1,5 +1,7 @@
 #include "apps/diff_report.h"
 
+#include "core/json_text.h"
+
 #include <cstdio>
 #include <sstream>
 
@@ -47,22 +49,7 @@ void writeSession(std::ostream& out, std::size_t s, const DiffResult& result,
 
 }  // namespace
 
-std::string jsonString(const std::string& text) {
-  std::string out = "\"";
-  for (const char c : text) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char escaped[8];
-      std::snprintf(escaped, sizeof(escaped), "\\u%04x", c);
-      out += escaped;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
-}
+std::string jsonString(const std::string& text) { return jsonQuoted(text); }
 
 void writeDiffJsonMembers(std::ostream& out, const DiffResult& result, const DiffFiles& files,
                           const DiffRunInfo& info, int indent) {

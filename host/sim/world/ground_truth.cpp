@@ -5,6 +5,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/json_text.h"
 #include "mesh/ply.h"
 #include "sim/world/shape_mesh.h"
 
@@ -20,22 +21,6 @@ std::string number(double value) {
   return text;
 }
 
-std::string quoted(const std::string& text) {
-  std::string out = "\"";
-  for (const char c : text) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char escape[8];
-      std::snprintf(escape, sizeof(escape), "\\u%04x", c);
-      out += escape;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
-}
 
 template <typename Vector>
 std::string array(const Vector& v) {
@@ -60,15 +45,15 @@ std::string poseJson(const ObjectState& object) {
 std::string objectJson(const World& world, const ObjectState& object) {
   const ObjectSpec& spec = world.object(object.id);
   const auto& rgb = spec.material.albedo;
-  return "    {\"id\": " + std::to_string(object.id) + ", \"name\": " + quoted(object.name) +
-         ", \"shape\": " + quoted(shapeKindName(object.shape)) +
+  return "    {\"id\": " + std::to_string(object.id) + ", \"name\": " + jsonQuoted(object.name) +
+         ", \"shape\": " + jsonQuoted(shapeKindName(object.shape)) +
          ", \"present\": " + (object.present ? "true" : "false") +
-         ", \"changed_since_previous\": " + quoted(changeName(object.since_previous)) +
-         ", \"changed_since_first\": " + quoted(changeName(object.since_first)) + ",\n     " +
+         ", \"changed_since_previous\": " + jsonQuoted(changeName(object.since_previous)) +
+         ", \"changed_since_first\": " + jsonQuoted(changeName(object.since_first)) + ",\n     " +
          poseJson(object) + ",\n     \"size_m\": " + array(spec.shape.size_m) + ", \"albedo\": [" +
          std::to_string(rgb[0]) + ", " + std::to_string(rgb[1]) + ", " + std::to_string(rgb[2]) +
          "], \"reflectivity\": " + number(spec.material.reflectivity) +
-         ", \"mesh\": " + quoted("objects/" + objectFileStem(world, object.id) + ".ply") + "}";
+         ", \"mesh\": " + jsonQuoted("objects/" + objectFileStem(world, object.id) + ".ply") + "}";
 }
 
 void writeText(const std::string& path, const std::string& text) {
@@ -91,7 +76,7 @@ std::string objectFileStem(const World& world, int object_id) {
 
 std::string sessionJson(const World& world, int session) {
   const SessionTruth& truth = world.session(session);
-  std::string json = "{\n  \"world\": " + quoted(world.name()) +
+  std::string json = "{\n  \"world\": " + jsonQuoted(world.name()) +
                      ",\n  \"seed\": " + std::to_string(world.seed()) +
                      ",\n  \"session\": " + std::to_string(session) +
                      ",\n  \"light\": {\"direction_W\": " + array(truth.light.direction_W) +
