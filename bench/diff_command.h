@@ -13,13 +13,13 @@ namespace strata::bench {
 
 struct DiffBenchOptions {
   std::string world = "room";
-  int sessions = 0;         // 0: all of the world's sessions
+  int sessions = 0;  // 0: all of the world's sessions
   float voxel_size_m = 0.02f;
-  int frames = 0;           // per session, spread over its path; 0: every frame at 30 Hz
-  bool free_space = true;   // MapConfig::allocate_free_space (what ChangeDetector wants)
-  bool reference = true;    // also run the C++ reference on the device's session maps
-  std::string out_path;     // also write the JSON here (atomically)
-  std::string device;       // Vulkan device index or name substring
+  int frames = 0;          // per session, spread over its path; 0: every frame at 30 Hz
+  bool free_space = true;  // MapConfig::allocate_free_space (what ChangeDetector wants)
+  bool reference = true;   // also run the C++ reference on the device's session maps
+  std::string out_path;    // also write the JSON here (atomically)
+  std::string device;      // Vulkan device index or name substring
 };
 
 CLI::App* addDiffCommand(CLI::App& app, DiffBenchOptions& options);

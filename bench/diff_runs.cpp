@@ -112,12 +112,11 @@ Json diffSessionJson(const DiffSessionRun& r) {
                  .set("device", stagesJson(d.stages))
                  .set("device_per_voxel", perVoxelJson(d.stages, d.voxels))
                  .set("device_update_wall_ms", d.wall_ms)
-                 .set("dynamic_voxels",
-                      Json::object()
-                          .set("difference", d.raw_dynamic_voxels)
-                          .set("after_erosion", d.eroded_dynamic_voxels)
-                          .set("after_dilation", d.dynamic_voxels)
-                          .set("session_dynamic_part", d.session_dynamic_voxels));
+                 .set("dynamic_voxels", Json::object()
+                                            .set("difference", d.raw_dynamic_voxels)
+                                            .set("after_erosion", d.eroded_dynamic_voxels)
+                                            .set("after_dilation", d.dynamic_voxels)
+                                            .set("session_dynamic_part", d.session_dynamic_voxels));
   if (r.reference.session < 0) return out.set("reference", "not run (--no-reference)");
   const double total = d.stages.total();
   return out.set("reference", stagesJson(r.reference.stages))
@@ -146,8 +145,7 @@ Json diffSummaryJson(const DiffRun& run) {
       .set("device_erosion_ms", device([](auto& u) { return u.stages.erosion_ms; }))
       .set("device_dilation_ms", device([](auto& u) { return u.stages.dilation_ms; }))
       .set("device_static_update_ms", device([](auto& u) { return u.stages.static_update_ms; }))
-      .set("device_session_dynamic_ms",
-           device([](auto& u) { return u.stages.session_dynamic_ms; }))
+      .set("device_session_dynamic_ms", device([](auto& u) { return u.stages.session_dynamic_ms; }))
       .set("reference_update_ms", reference(total))
       .set("device_map_mib", static_cast<double>(run.device_bytes) / (1 << 20));
 }

@@ -6,7 +6,8 @@
 // Bindings: 0 uint counters[] (counters[counter_index] += dynamic labels written), 1 S,
 //           2 the session's TSDF layer, 3 the label layer written, 4 uint raw_mask[] (dynamic
 //           row masks, zeroed by the host before; change_voxel_access.glsl).
-// Specialization constant 0: layers by device address instead of bindings 1-3.
+// Specialization constant 0: layers by device address instead of bindings 1-3 (layers beyond
+// one binding's range).
 // Dispatch: (min(g, 65535), ceil(g / 65535)) groups for g = ceil(voxel_count / 1024).
 // Push constants: ChangeVoxelPush (engine/kernels/change_layout.h): S and M TSDF layers, the raw
 // label layer written.
@@ -41,7 +42,9 @@ void main() {
     VoxelQuad s = loadStatic(q);
     VoxelQuad m = loadSession(q);
     uvec4 labels;
-    for (int k = 0; k < 4; ++k) labels[k] = differenceLabel(s.v[k], m.v[k], pc.min_weight, pc.threshold_m);
+    for (int k = 0; k < 4; ++k) {
+      labels[k] = differenceLabel(s.v[k], m.v[k], pc.min_weight, pc.threshold_m);
+    }
     storeLabels(q, labels);
     markDynamic(q, labels);
     dynamic_labels = dynamicCount(labels);

@@ -45,19 +45,17 @@ void main() {
   uint row = gl_LocalInvocationIndex % kRowsPerBlock;
   uint kept = 0u;
   uint raw = slot < pc.block_count ? raw_mask[slot * kRowsPerBlock + row] : 0u;
-  if (raw != 0u) {  // most rows hold no dynamic voxel: nothing to erode
-    int y = int(row % 8u), z = int(row / 8u);
-    uint counts[8] = uint[8](0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u);
+  int y = int(row % 8u), z = int(row / 8u);
+  // The cube is counted only around the row's dynamic voxels (few rows have any).
+  for (uint bits = raw; bits != 0u; bits &= bits - 1u) {
+    int x = findLSB(bits);
+    uint n = 0u;
     for (int dz = -kRadius; dz <= kRadius; ++dz) {
       for (int dy = -kRadius; dy <= kRadius; ++dy) {
-        uint extended = extendedRow(slot, y + dy, z + dz);
-        for (int x = 0; x < kBlockEdge; ++x) counts[x] += bitCount(windowBits(extended, x));
+        n += bitCount(windowBits(extendedRow(slot, y + dy, z + dz), x));
       }
     }
-    for (int x = 0; x < kBlockEdge; ++x) {
-      bool survives = 2u * counts[x] >= uint(kKernel * kKernel * kKernel);
-      if (((raw >> uint(x)) & 1u) != 0u && survives) kept |= 1u << uint(x);
-    }
+    if (2u * n >= uint(kKernel * kKernel * kKernel)) kept |= 1u << uint(x);
   }
   if (slot < pc.block_count) eroded_mask[slot * kRowsPerBlock + row] = kept;
   if (kept != 0u) {  // rare: flag the 3x3x3 blocks whose dilation may reach a kept voxel

@@ -5,7 +5,8 @@
 // read and written by its own invocation only.
 // Bindings: 0 uint counters[] (unused; the per-voxel kernels share one layout), 1 S (read and
 //           written), 2 M_N, 3 the label layer D, 4 unused (change_voxel_access.glsl).
-// Specialization constant 0: layers by device address instead of bindings 1-3.
+// Specialization constant 0: layers by device address instead of bindings 1-3 (layers beyond
+// one binding's range).
 // Dispatch: (min(g, 65535), ceil(g / 65535)) groups for g = ceil(voxel_count / 1024).
 // Push constants: ChangeVoxelPush (engine/kernels/change_layout.h): S (read and written), M_N,
 // the label layer D (read).

@@ -1,10 +1,10 @@
 #include "change_pipeline_helpers.h"
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
-
-#include <gtest/gtest.h>
 
 #include "sim/default_scene.h"
 #include "sim/world/world_paths.h"

@@ -86,7 +86,7 @@ DirectRun runDirect(const sim::AnalyticDataset& a, const sim::AnalyticDataset& b
   const MapConfig config = test::testMapConfig(0.05f, false);
   DeviceFusion fusion(test::sharedContext(), config);
   DeviceTsdfMap& map = fusion.map();
-  for (int i = 0; i < 2; ++i) map.addTsdfLayer();  // sessions 0, 1: layers 1, 2
+  for (int i = 0; i < 2; ++i) map.addTsdfLayer();   // sessions 0, 1: layers 1, 2
   for (int i = 0; i < 4; ++i) map.addLabelLayer();  // D, raw, P0, P1
   change::DeviceChange change(test::sharedContext(), map, test::testChangeConfig(0.05f));
   change.setBindingLimit(binding_limit);

@@ -55,9 +55,11 @@ TEST(ChangePipeline, DeviceMatchesReferenceOnSimulatedRoom) {
     const change::ChangeUpdateStats stats = device.endSession(s);
     ASSERT_EQ(reference.addSessionMap(device.sessionMap(s)), s);
     const change::ChangeUpdateStats ref = reference.endSession(s);
-    std::printf("[ change ] session %d: %u blocks, device %.1f ms (reference %.0f ms), dynamic %llu"
-                " (reference %llu)\n", s, stats.blocks, stats.stages.total(), ref.stages.total(),
-                (unsigned long long)stats.dynamic_voxels, (unsigned long long)ref.dynamic_voxels);
+    std::printf(
+        "[ change ] session %d: %u blocks, device %.1f ms (reference %.0f ms), dynamic %llu"
+        " (reference %llu)\n",
+        s, stats.blocks, stats.stages.total(), ref.stages.total(),
+        (unsigned long long)stats.dynamic_voxels, (unsigned long long)ref.dynamic_voxels);
     const change::ChangeStageTimes& t = stats.stages;
     std::printf("[ change ]   nb %.1f diff %.1f erode %.1f dilate %.1f static %.1f parts %.1f\n",
                 t.neighbours_ms, t.difference_ms, t.erosion_ms, t.dilation_ms, t.static_update_ms,

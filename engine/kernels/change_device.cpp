@@ -51,7 +51,8 @@ void DeviceChange::setBindingLimit(std::uint64_t bytes) { binding_limit_bytes_ =
 
 void DeviceChange::ensureBuffers(std::uint32_t blocks, std::uint32_t counters) {
   const std::uint64_t mask_bytes = std::uint64_t{blocks} * kRowsPerBlock * 4;
-  ensureSize(context_, neighbour_slots_, std::uint64_t{blocks} * kNeighbours * 4, "neighbour table");
+  ensureSize(context_, neighbour_slots_, std::uint64_t{blocks} * kNeighbours * 4,
+             "neighbour table");
   ensureSize(context_, raw_mask_, mask_bytes, "raw row masks");
   ensureSize(context_, eroded_mask_, mask_bytes, "eroded row masks");
   ensureSize(context_, near_dynamic_, std::uint64_t{blocks} * 4, "near-dynamic flags");
@@ -119,8 +120,9 @@ ChangeUpdateStats DeviceChange::update(const ChangeLayers& layers) {
   for (std::size_t i = 0; i < layers.session_parts.size(); ++i) {
     stats.session_dynamic_voxels += counts_[kCountersPerClean * (1 + i) + 2];
   }
-  stats.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() -
-                                                            wall_start).count();
+  stats.wall_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - wall_start)
+          .count();
   return stats;
 }
 

@@ -32,8 +32,8 @@ struct ChangeLayers {
 
 /// Dynamic parts computed by DeviceChange::dynamicParts.
 struct DynamicPartStats {
-  double device_ms = 0.0;                      // timestamp queries, all parts
-  std::vector<std::uint64_t> dynamic_voxels;   // per entry of ChangeLayers::session_parts
+  double device_ms = 0.0;                     // timestamp queries, all parts
+  std::vector<std::uint64_t> dynamic_voxels;  // per entry of ChangeLayers::session_parts
 };
 
 class DeviceChange {
@@ -84,11 +84,11 @@ class DeviceChange {
   ChangeConfig config_;
   vk::ComputePipeline neighbours_;
   std::array<std::unique_ptr<Pipelines>, 2> pipelines_;  // [by_address], made on first use
-  vk::Buffer neighbour_slots_;  // 27 int per slot
-  vk::Buffer raw_mask_;         // dynamic row masks (change_rows.glsl), 64 words per slot
+  vk::Buffer neighbour_slots_;                           // 27 int per slot
+  vk::Buffer raw_mask_;  // dynamic row masks (change_rows.glsl), 64 words per slot
   vk::Buffer eroded_mask_;
-  vk::Buffer near_dynamic_;     // per slot: an eroded dynamic voxel within one block
-  vk::Buffer counters_;         // dynamic labels written by each pass
+  vk::Buffer near_dynamic_;  // per slot: an eroded dynamic voxel within one block
+  vk::Buffer counters_;      // dynamic labels written by each pass
   vk::Buffer counters_readback_;
   vk::TimestampQueries timer_;
   std::uint64_t binding_limit_bytes_ = ~std::uint64_t{0};

@@ -17,7 +17,14 @@ inline constexpr std::uint32_t kCountersPerClean = 3;
 
 // Timestamps written after each stage.
 enum Stamp : std::uint32_t {
-  kStart, kNeighbourTable, kDifference, kErosion, kDilation, kStaticUpdate, kSessionParts, kStamps
+  kStart,
+  kNeighbourTable,
+  kDifference,
+  kErosion,
+  kDilation,
+  kStaticUpdate,
+  kSessionParts,
+  kStamps
 };
 
 inline std::uint64_t divideUp(std::uint64_t a, std::uint64_t b) { return (a + b - 1) / b; }
@@ -32,15 +39,13 @@ struct DeviceChange::Pipelines {
   Pipelines(vk::Context& context, const ChangeConfig& config, bool by_address) {
     const std::uint32_t address = by_address ? 1u : 0u;
     auto voxelPass = [&](const char* name) {
-      return vk::ComputePipeline::create(context, name, 5, sizeof(gpu::ChangeVoxelPush),
-                                         {address});
+      return vk::ComputePipeline::create(context, name, 5, sizeof(gpu::ChangeVoxelPush), {address});
     };
     difference = voxelPass("change_difference");
     session_dynamic = voxelPass("change_session_dynamic");
     static_update = voxelPass("change_static_update");
-    erode = vk::ComputePipeline::create(
-        context, "change_erode", 5, sizeof(gpu::ChangeMorphPush),
-        {static_cast<std::uint32_t>(config.erosion_kernel_voxels)});
+    erode = vk::ComputePipeline::create(context, "change_erode", 5, sizeof(gpu::ChangeMorphPush),
+                                        {static_cast<std::uint32_t>(config.erosion_kernel_voxels)});
     dilate = vk::ComputePipeline::create(
         context, "change_dilate", 6, sizeof(gpu::ChangeMorphPush),
         {static_cast<std::uint32_t>(config.dilation_kernel_voxels), address});

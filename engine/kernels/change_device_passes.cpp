@@ -10,8 +10,8 @@ namespace strata::change {
 void DeviceChange::warmUp() {
   ensureBuffers(1, kCountersPerClean);
   Pipelines& p = pipelines(false);
-  const vk::ComputePipeline* all[] = {&neighbours_,   &p.difference, &p.session_dynamic,
-                                      &p.static_update, &p.erode,    &p.dilate};
+  const vk::ComputePipeline* all[] = {&neighbours_,     &p.difference, &p.session_dynamic,
+                                      &p.static_update, &p.erode,      &p.dilate};
   std::vector<vk::DescriptorSet> sets;
   // No blocks, no voxels, no entries (the voxel push is the largest).
   static_assert(sizeof(gpu::ChangeMorphPush) <= sizeof(gpu::ChangeVoxelPush) &&
@@ -93,10 +93,10 @@ void DeviceChange::recordErosion(vk::CommandBuffer& cmd, Pipelines& p, std::uint
 
 void DeviceChange::recordDilation(vk::CommandBuffer& cmd, Pipelines& p, int raw, int out,
                                   std::uint32_t mask, std::uint32_t counter) {
-  sets_.push_back(vk::DescriptorSet::create(
-      context_, p.dilate,
-      {&counters_, &neighbour_slots_, &eroded_mask_, &map_.labelPool(raw), &map_.labelPool(out),
-       &near_dynamic_}));
+  sets_.push_back(
+      vk::DescriptorSet::create(context_, p.dilate,
+                                {&counters_, &neighbour_slots_, &eroded_mask_, &map_.labelPool(raw),
+                                 &map_.labelPool(out), &near_dynamic_}));
   gpu::ChangeMorphPush push{};
   push.raw_address = map_.labelPoolAddress(raw);
   push.out_address = map_.labelPoolAddress(out);
@@ -109,8 +109,7 @@ void DeviceChange::recordDilation(vk::CommandBuffer& cmd, Pipelines& p, int raw,
   cmd.barrier();
 }
 
-void DeviceChange::recordMerge(vk::CommandBuffer& cmd, const ChangeLayers& layers,
-                               Pipelines& p) {
+void DeviceChange::recordMerge(vk::CommandBuffer& cmd, const ChangeLayers& layers, Pipelines& p) {
   recordRawPass(cmd, p.difference, layers.static_tsdf, layers.session_tsdf, layers.raw_scratch, 0);
   cmd.writeTimestamp(timer_, kDifference);
   recordErosion(cmd, p, 1);
@@ -123,8 +122,7 @@ void DeviceChange::recordMerge(vk::CommandBuffer& cmd, const ChangeLayers& layer
 }
 
 /// Raw session labels, erosion and dilation (restricted to raw dynamic voxels) per part.
-void DeviceChange::recordParts(vk::CommandBuffer& cmd, const ChangeLayers& layers,
-                               Pipelines& p) {
+void DeviceChange::recordParts(vk::CommandBuffer& cmd, const ChangeLayers& layers, Pipelines& p) {
   const auto mask = static_cast<std::uint32_t>(DilationMask::kRawDynamic);
   for (std::size_t i = 0; i < layers.session_parts.size(); ++i) {
     const auto [tsdf_layer, label_layer] = layers.session_parts[i];

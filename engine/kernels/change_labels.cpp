@@ -46,7 +46,9 @@ std::uint64_t LabelMap::count(VoxelLabel label) const {
 
 double labelAgreement(const LabelMap& a, const LabelMap& b) {
   std::uint64_t agree = 0, compared = 0;
-  for (const auto& [index, block] : a.blocks) compareBlock(&block, findBlock(b, index), agree, compared);
+  for (const auto& [index, block] : a.blocks) {
+    compareBlock(&block, findBlock(b, index), agree, compared);
+  }
   for (const auto& [index, block] : b.blocks) {
     if (findBlock(a, index) == nullptr) compareBlock(nullptr, &block, agree, compared);
   }

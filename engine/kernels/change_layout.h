@@ -11,9 +11,9 @@ struct ChangeVoxelPush {
   std::uint64_t static_address;   // S, a TSDF layer
   std::uint64_t session_address;  // M, a TSDF layer
   std::uint64_t label_address;    // a label layer: written, or read (D in the static update)
-                                  // (the dynamic row mask is a binding, see change_voxel_access.glsl)
-  std::uint32_t voxel_count;      // allocated slots * 512
-  std::uint32_t counter_index;    // counters[counter_index] += dynamic labels written
+                                // (the dynamic row mask is a binding, see change_voxel_access.glsl)
+  std::uint32_t voxel_count;    // allocated slots * 512
+  std::uint32_t counter_index;  // counters[counter_index] += dynamic labels written
   float min_weight;
   float threshold_m;
   float merge_close_m;
@@ -28,7 +28,7 @@ struct ChangeMorphPush {
   std::uint64_t raw_address;  // raw label layer (each voxel's own label), dilation
   std::uint64_t out_address;  // label layer written, dilation
   std::uint32_t block_count;
-  std::uint32_t mask;         // DilationMask (dilation only)
+  std::uint32_t mask;  // DilationMask (dilation only)
   std::uint32_t counter_index;
   std::uint32_t pad0;
 };
@@ -41,8 +41,8 @@ struct ChangeNeighboursPush {
   std::uint32_t entry_count;
   std::uint32_t hash_mask;
   std::uint32_t slot_count;
-  float voxel_size_m;          // unused
-  float min_weight;            // unused
+  float voxel_size_m;  // unused
+  float min_weight;    // unused
   std::uint32_t pad0;
 };
 static_assert(sizeof(ChangeNeighboursPush) == 32, "ChangeNeighboursPush layout");

@@ -67,7 +67,8 @@ std::vector<int> dynamicTile(const LabelMap& in, const BlockIndex& index, int r)
         const Eigen::Vector3i offset(floorDiv(local.x(), kBlockEdge),
                                      floorDiv(local.y(), kBlockEdge),
                                      floorDiv(local.z(), kBlockEdge));
-        const LabelBlock* block = around[(offset.x() + 1) + 3 * (offset.y() + 1) + 9 * (offset.z() + 1)];
+        const LabelBlock* block =
+            around[(offset.x() + 1) + 3 * (offset.y() + 1) + 9 * (offset.z() + 1)];
         if (block == nullptr) continue;
         const Eigen::Vector3i inner = local - offset * kBlockEdge;
         tile[(z * edge + y) * edge + x] =
@@ -114,7 +115,8 @@ LabelMap cubeFilter(const LabelMap& raw, const LabelMap& counted, int kernel_vox
   }
   parallelFor(sources.size(), [&](std::size_t i) {
     const std::vector<int> counts = dynamicInCubes(counted, *sources[i].first, kernel_voxels);
-    for (int v = 0; v < kVoxelsPerBlock; ++v) (*targets[i])[v] = rule((*sources[i].second)[v], counts[v]);
+    for (int v = 0; v < kVoxelsPerBlock; ++v)
+      (*targets[i])[v] = rule((*sources[i].second)[v], counts[v]);
   });
   return out;
 }

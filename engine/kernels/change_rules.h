@@ -23,7 +23,7 @@ inline VoxelLabel differenceLabel(const TsdfVoxel& s, const TsdfVoxel& m,
                                   const ChangeConfig& config) {
   if (!observed(s, config) || !observed(m, config)) return VoxelLabel::kUnknown;
   return std::fabs(m.tsdf_m - s.tsdf_m) > config.difference_threshold_m ? VoxelLabel::kDynamic
-                                                                         : VoxelLabel::kStatic;
+                                                                        : VoxelLabel::kStatic;
 }
 
 /// Step 5 before clean-up, session i against S (change_session_dynamic.comp): kUnknown unless M_i
@@ -36,7 +36,7 @@ inline VoxelLabel sessionDynamicLabel(const TsdfVoxel& m, const TsdfVoxel& s,
   if (!observed(m, config)) return VoxelLabel::kUnknown;
   if (!observed(s, config)) return VoxelLabel::kDynamic;
   return m.tsdf_m < s.tsdf_m - config.difference_threshold_m ? VoxelLabel::kDynamic
-                                                            : VoxelLabel::kStatic;
+                                                             : VoxelLabel::kStatic;
 }
 
 /// Step 3, erosion (change_erode.comp): a dynamic voxel stays dynamic when at least half of the
@@ -44,16 +44,15 @@ inline VoxelLabel sessionDynamicLabel(const TsdfVoxel& m, const TsdfVoxel& s,
 /// not dynamic. A dynamic voxel that fails becomes kStatic; other labels are kept.
 inline VoxelLabel erodedLabel(VoxelLabel raw, int dynamic_in_cube, int kernel_voxels) {
   if (raw != VoxelLabel::kDynamic) return raw;
-  return 2 * dynamic_in_cube >= kernel_voxels * kernel_voxels * kernel_voxels
-             ? VoxelLabel::kDynamic
-             : VoxelLabel::kStatic;
+  return 2 * dynamic_in_cube >= kernel_voxels * kernel_voxels * kernel_voxels ? VoxelLabel::kDynamic
+                                                                              : VoxelLabel::kStatic;
 }
 
 /// Where dilation may place a dynamic label.
 enum class DilationMask : std::uint32_t {
-  kObserved = 0,     // D: voxels observed in both layers (raw label not kUnknown)
-  kRawDynamic = 1,   // a session's dynamic part: only its raw dynamic voxels (so it stays a
-                     // subset of them; the dilation then only restores what erosion removed)
+  kObserved = 0,    // D: voxels observed in both layers (raw label not kUnknown)
+  kRawDynamic = 1,  // a session's dynamic part: only its raw dynamic voxels (so it stays a
+                    // subset of them; the dilation then only restores what erosion removed)
 };
 
 /// Step 3, dilation (change_dilate.comp): kDynamic where the mask allows and the kernel^3 cube

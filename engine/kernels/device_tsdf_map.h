@@ -92,7 +92,7 @@ class DeviceTsdfMap {
   MapConfig config_;
   vk::Buffer entries_;
   vk::Buffer counters_;
-  std::vector<vk::Buffer> tsdf_layers_;   // [0]: the map every kernel uses by default
+  std::vector<vk::Buffer> tsdf_layers_;  // [0]: the map every kernel uses by default
   std::vector<vk::Buffer> label_layers_;
   std::uint32_t block_count_ = 0;
   std::uint32_t block_capacity_ = 0;

@@ -55,7 +55,8 @@ class ReferenceBackend final : public ChangeBackend {
     stage(t.difference_ms, [&] { raw = differenceReference(static_, m, config_); });
     stage(t.erosion_ms, [&] { eroded = erodeReference(raw, config_.erosion_kernel_voxels); });
     stage(t.dilation_ms, [&] {
-      labels_ = dilateReference(raw, eroded, config_.dilation_kernel_voxels, DilationMask::kObserved);
+      labels_ =
+          dilateReference(raw, eroded, config_.dilation_kernel_voxels, DilationMask::kObserved);
     });
     stage(t.static_update_ms, [&] { staticUpdateReference(static_, m, labels_, config_); });
     stage(t.session_dynamic_ms, [&] { refreshDynamic(session); });

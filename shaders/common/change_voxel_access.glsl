@@ -43,7 +43,8 @@ VoxelQuad loadSession(uint q) {
     Vec4s layer = Vec4s(pc.session_address);
     return unpackQuad(layer.v[3u * q], layer.v[3u * q + 1u], layer.v[3u * q + 2u]);
   }
-  return unpackQuad(session_layer[3u * q], session_layer[3u * q + 1u], session_layer[3u * q + 2u]);
+  return unpackQuad(session_layer[3u * q], session_layer[3u * q + 1u],
+                    session_layer[3u * q + 2u]);
 }
 
 void storeStatic(uint q, VoxelQuad quad) {
