@@ -225,5 +225,15 @@ TEST(ChangePipeline, MisuseIsAnInputError) {
   EXPECT_THROW(detector.addSessionMap(TsdfMap(test::testMapConfig(0.04f, false))), InputError);
 }
 
+TEST(ChangePipeline, SubsampledSessionsNeedProportionallyFewerViews) {
+  change::ChangeConfig config;  // min_weight 10: frames of a full-rate recording
+  EXPECT_FLOAT_EQ(config.forSubsampling(1.0).min_weight, 10.0f);
+  EXPECT_FLOAT_EQ(config.forSubsampling(5.0).min_weight, 2.0f) << "every 5th frame: 2 views";
+  EXPECT_FLOAT_EQ(config.forSubsampling(5.0).difference_threshold_m,
+                  config.difference_threshold_m);
+  EXPECT_THROW(config.forSubsampling(0.5), InputError);
+  EXPECT_THROW(config.forSubsampling(std::nan("")), InputError);
+}
+
 }  // namespace
 }  // namespace strata

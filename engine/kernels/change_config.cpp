@@ -21,16 +21,25 @@ void requireKernel(int voxels, const char* field) {
 
 }  // namespace
 
+ChangeConfig ChangeConfig::forSubsampling(double recorded_per_fused) const {
+  require(std::isfinite(recorded_per_fused) && recorded_per_fused >= 1.0,
+          "recorded frames per fused frame must be >= 1, got " +
+              std::to_string(recorded_per_fused));
+  ChangeConfig scaled = *this;
+  scaled.min_weight = static_cast<float>(min_weight / recorded_per_fused);
+  return scaled;
+}
+
 void ChangeConfig::validate(float voxel_size_m) const {
   require(std::isfinite(voxel_size_m) && voxel_size_m > 0.0f, "voxel size must be > 0");
   require(std::isfinite(min_weight) && min_weight > 0.0f,
           "min_weight must be > 0, got " + std::to_string(min_weight));
   require(std::isfinite(difference_threshold_m) && difference_threshold_m > 0.0f,
           "difference_threshold_m must be > 0, got " + std::to_string(difference_threshold_m));
-  require(std::isfinite(merge_close_m) && merge_close_m >= 0.0f &&
-              merge_close_m < difference_threshold_m,
-          "merge_close_m must be in [0, difference_threshold_m), got " +
-              std::to_string(merge_close_m));
+  require(
+      std::isfinite(merge_close_m) && merge_close_m >= 0.0f &&
+          merge_close_m < difference_threshold_m,
+      "merge_close_m must be in [0, difference_threshold_m), got " + std::to_string(merge_close_m));
   requireKernel(erosion_kernel_voxels, "erosion_kernel_voxels");
   requireKernel(dilation_kernel_voxels, "dilation_kernel_voxels");
 }

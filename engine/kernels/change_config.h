@@ -7,8 +7,10 @@ namespace strata::change {
 
 struct ChangeConfig {
   /// Voxels of a layer with less weight are unobserved in that layer. Higher trusts only
-  /// well-seen voxels (fewer false changes) but leaves more space unknown; the weight is the
-  /// fusion's (1/z^2 per frame by default: a voxel seen at 2 m gains 0.25 per frame).
+  /// well-seen voxels (fewer false changes) but leaves more space unknown. The weight is the
+  /// fusion's: change detection fuses with constant weights (apps::changeMapConfig), so this
+  /// counts the frames of a full-rate (30 Hz) recording that saw the voxel; for a subsampled
+  /// session use forSubsampling(). With 1/z^2 weights a voxel seen at 2 m gains only 0.25 a frame.
   float min_weight = 10.0f;
   /// Label dynamic where both layers are observed and |f_M - f_S| exceeds this (5-7 cm at 2 cm
   /// voxels). Lower finds smaller displacements but labels more noise. Also the margin by which a
@@ -25,6 +27,12 @@ struct ChangeConfig {
 
   /// Throws InputError naming the bad field.
   void validate(float voxel_size_m) const;
+
+  /// The same thresholds for sessions fused from one frame in every `recorded_per_fused` frames
+  /// of their recording (a stride, or frames spread over a path): each fused frame stands for
+  /// that many recorded views, so min_weight becomes min_weight / recorded_per_fused fused views.
+  /// Throws InputError unless recorded_per_fused >= 1.
+  ChangeConfig forSubsampling(double recorded_per_fused) const;
 };
 
 /// Time per stage of one session update: device time from timestamp queries on the device, host
@@ -50,7 +58,7 @@ struct ChangeUpdateStats {
   std::uint64_t voxels = 0;              // blocks * 512
   std::uint64_t raw_dynamic_voxels = 0;  // D after differencing
   std::uint64_t eroded_dynamic_voxels = 0;
-  std::uint64_t dynamic_voxels = 0;      // D after dilation
+  std::uint64_t dynamic_voxels = 0;          // D after dilation
   std::uint64_t session_dynamic_voxels = 0;  // the session's dynamic part
 };
 

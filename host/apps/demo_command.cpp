@@ -53,6 +53,7 @@ SessionResult sessionResult(const DiffSession& fused, const TsdfMap& map,
   SessionResult r;
   r.session = session.session();
   r.frames = fused.frames;
+  r.recorded_frames = session.recordedFrames();
   r.render_s = fused.load_s;
   r.fuse_wall_ms = fused.fuse_wall_ms;
   r.fuse_device_ms = fused.fuse_device_ms;
@@ -104,8 +105,7 @@ DemoReport runDemoPipeline(const DemoOptions& o) {
   const auto start = Clock::now();
   const auto world = loadWorld(o.world, o.seed, o.sessions);
   const sim::SimSessionConfig config = sessionConfig(30.0, o.frames, !o.no_noise, false);
-  MapConfig map_config = changeMapConfig(o.voxel_size_m);
-  map_config.weight_mode = WeightMode::kConstant;  // min_weight counts frames
+  const MapConfig map_config = changeMapConfig(o.voxel_size_m);  // min_weight counts frames
   DiffRunInfo info;
   info.change.min_weight = o.min_weight;
   vk::ContextOptions context_options;

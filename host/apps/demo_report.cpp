@@ -40,6 +40,7 @@ void writeSession(std::ostringstream& out, const SessionResult& r,
                   const change::SessionObjectEvaluation& e) {
   const double n = r.frames > 0 ? static_cast<double>(r.frames) : 1.0;
   out << "    {\"session\": " << r.session << ", \"frames\": " << r.frames
+      << ", \"recorded_frames\": " << r.recorded_frames
       << ", \"render_fps\": " << (r.render_s > 0 ? r.frames / r.render_s : 0.0)
       << ", \"fuse_wall_ms_per_frame\": " << r.fuse_wall_ms / n
       << ", \"fuse_device_ms_per_frame\": " << r.fuse_device_ms / n << ", \"blocks\": " << r.blocks
@@ -93,10 +94,11 @@ void writeDemoReport(const DemoReport& report, const DiffResult& result, const D
 }
 
 std::string summarizeDemo(const DemoReport& report, const std::string& out_dir) {
-  std::size_t frames = 0;
+  std::size_t frames = 0, recorded = 0;
   double render_s = 0.0, fuse_ms = 0.0, tsdf_error = 0.0, within = 0.0;
   for (const SessionResult& r : report.sessions) {
     frames += r.frames;
+    recorded += r.recorded_frames;
     render_s += r.render_s;
     fuse_ms += r.fuse_wall_ms;
     tsdf_error += r.tsdf.mean_abs_error_m;
@@ -106,7 +108,8 @@ std::string summarizeDemo(const DemoReport& report, const std::string& out_dir) 
   std::ostringstream s;
   s.precision(3);
   s << "Simulated and fused " << report.sessions.size() << " sessions of world '" << report.world
-    << "' (seed " << report.seed << "), " << frames << " frames, in " << report.total_s
+    << "' (seed " << report.seed << "), " << frames << " frames (of " << recorded
+    << " recorded at 30 Hz), in " << report.total_s
     << " s on " << report.device << " (" << report.map_config << "): rendering "
     << (render_s > 0 ? frames / render_s : 0.0) << " frames/s, fusion "
     << (frames > 0 ? fuse_ms / frames : 0.0) << " ms/frame. Against the ground truth: mean "

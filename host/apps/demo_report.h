@@ -13,6 +13,7 @@ namespace strata::apps {
 struct SessionResult {
   int session = 0;
   std::size_t frames = 0;
+  std::size_t recorded_frames = 0;  // of the full recording at 30 Hz (frames are spread over it)
   double render_s = 0.0;
   double fuse_wall_ms = 0.0;    // summed over frames
   double fuse_device_ms = 0.0;  // summed over frames

@@ -81,6 +81,8 @@ void runChecked(const DiffOptions& o) {
   fs::create_directories(o.out_dir);
   DiffRunInfo info;
   info.change.min_weight = o.min_weight;
+  // --min-weight counts recorded frames; every stride-th frame stands for `stride` of them.
+  info.change = info.change.forSubsampling(o.stride);
   info.change.difference_threshold_m = o.difference_threshold_m;
   const MapConfig map_config = mapConfigFor(o, inputs);
   vk::ContextOptions context_options;
@@ -124,7 +126,9 @@ CLI::App* addDiffCommand(CLI::App& app, DiffOptions& o) {
                    "Observation weight: constant (min weight counts frames) | inv-z2")
       ->check(CLI::IsMember({"constant", "inv-z2"}))
       ->capture_default_str();
-  diff->add_option("--min-weight", o.min_weight, "Weight below which a voxel is unobserved")
+  diff->add_option("--min-weight", o.min_weight,
+                   "Weight below which a voxel is unobserved (constant weights: recorded frames "
+                   "that saw it; divided by --stride)")
       ->capture_default_str();
   diff->add_option("--threshold", o.difference_threshold_m,
                    "Distance change that labels a voxel dynamic, metres")

@@ -20,6 +20,8 @@ MapConfig changeMapConfig(float voxel_size_m) {
   config.voxel_size_m = voxel_size_m;
   // Without observed free space, S cannot tell a new object from new static space.
   config.allocate_free_space = true;
+  // ChangeConfig::min_weight counts the frames that saw a voxel: 1 per frame, whatever the range.
+  config.weight_mode = WeightMode::kConstant;
   config.validate();
   return config;
 }

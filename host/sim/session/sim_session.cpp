@@ -54,6 +54,7 @@ SimSessionDataset::SimSessionDataset(std::shared_ptr<const World> world, int ses
       sessionTrajectory(*world_, session, *scene_, config_.path, config_.trajectory, seed_));
   camera_ = std::make_unique<RgbdCamera>(config_.camera);
   lighting_ = lightingOf(truth);
+  recorded_frames_ = trajectory_->sampleTimes(config_.frame_rate_hz).size();
   times_s_ = frameTimes(*trajectory_, config_);
   for (double t : times_s_) true_T_W_C_.push_back(trajectory_->pose(t));
   given_T_W_C_ = config_.drift ? addOdometryDrift(true_T_W_C_, config_.drift_config, seed_)

@@ -40,6 +40,8 @@ class SimSessionDataset : public Dataset {
 
   std::string name() const override;
   std::size_t size() const override { return times_s_.size(); }
+  /// Frames of the full recording at frame_rate_hz (size() when max_frames keeps them all).
+  std::size_t recordedFrames() const { return recorded_frames_; }
   CameraIntrinsics intrinsics() const override { return config_.camera.intrinsics; }
   /// The sensor frame with the pose given to the mapper (drifted when configured).
   RgbdFrame load(std::size_t index) const override;
@@ -66,6 +68,7 @@ class SimSessionDataset : public Dataset {
   std::unique_ptr<RgbdCamera> camera_;
   Lighting lighting_;
   std::vector<double> times_s_;
+  std::size_t recorded_frames_ = 0;
   std::vector<Eigen::Isometry3d> true_T_W_C_;
   std::vector<Eigen::Isometry3d> given_T_W_C_;
 };
