@@ -5,6 +5,9 @@
 #include "diff_command.h"
 #include "esdf_command.h"
 #include "fuse_command.h"
+#include "lcm_command.h"
+#include "select_command.h"
+#include "occupancy_command.h"
 #include "sim_command.h"
 
 int main(int argc, char** argv) {
@@ -18,6 +21,12 @@ int main(int argc, char** argv) {
   CLI::App* esdf = strata::bench::addEsdfCommand(app, esdf_options);
   strata::bench::DiffBenchOptions diff_options;
   CLI::App* diff = strata::bench::addDiffCommand(app, diff_options);
+  strata::bench::SelectBenchOptions select_options;
+  CLI::App* select_cmd = strata::bench::addSelectCommand(app, select_options);
+  strata::bench::OccupancyBenchOptions occupancy_options;
+  CLI::App* occupancy = strata::bench::addOccupancyCommand(app, occupancy_options);
+  strata::bench::LcmBenchOptions lcm_options;
+  CLI::App* lcm = strata::bench::addLcmCommand(app, lcm_options);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -27,5 +36,8 @@ int main(int argc, char** argv) {
   if (sim->parsed()) return strata::bench::runSimBench(sim_options);
   if (esdf->parsed()) return strata::bench::runEsdfBench(esdf_options);
   if (diff->parsed()) return strata::bench::runDiffBench(diff_options);
+  if (select_cmd->parsed()) return strata::bench::runSelectBench(select_options);
+  if (occupancy->parsed()) return strata::bench::runOccupancyBench(occupancy_options);
+  if (lcm->parsed()) return strata::bench::runLcmBench(lcm_options);
   return 2;
 }

@@ -9,6 +9,7 @@ PACKAGES=(
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools
   libeigen3-dev libopencv-dev libyaml-cpp-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev libembree-dev
+  liblcm-dev liblcm-bin libglib2.0-dev iproute2 util-linux
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

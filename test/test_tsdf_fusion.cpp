@@ -105,6 +105,37 @@ TEST(BlockAllocationGrowth, TableAndPoolGrowWithoutDroppingBlocks) {
   expectDeviceMatchesReference(grown, reference);
 }
 
+// What the LCM mapper does for mesh updates: a host copy kept current by downloading only the
+// blocks each frame touched equals a full download.
+TEST(DeviceMapDownload, TouchedBlocksBringAStaleCopyUpToDate) {
+  const auto dataset = analyticDataset(6);
+  const MapConfig config;
+  DeviceFusion fusion(test::sharedContext(), config);
+  fusion.setTrackTouchedBlocks(true);
+  const CameraIntrinsics k = dataset.intrinsics();
+  for (std::size_t i = 0; i < 3; ++i) fusion.integrate(dataset.load(i), k);
+  TsdfMap kept(config);
+  fusion.map().download(kept);
+  const std::size_t blocks_before = kept.blockCount();
+  for (std::size_t i = 3; i < 6; ++i) {
+    fusion.integrate(dataset.load(i), k);
+    std::vector<BlockIndex> touched = fusion.lastTouchedBlocks();
+    ASSERT_FALSE(touched.empty());
+    touched.push_back(BlockIndex(100000, 0, 0));  // not on the device: ignored
+    fusion.map().downloadBlocks(touched, kept);
+  }
+  TsdfMap full(config);
+  fusion.map().download(full);
+  EXPECT_GT(full.blockCount(), blocks_before) << "later frames allocate new blocks";
+  const test::MapDifference diff = compareMaps(kept, full, 0.0f, 0.0f);
+  EXPECT_EQ(diff.blocks_only_in_a + diff.blocks_only_in_b, 0u);
+  EXPECT_EQ(diff.distance_mismatches + diff.weight_mismatches + diff.color_mismatches, 0u);
+  MapConfig other = config;
+  other.voxel_size_m *= 2.0f;
+  TsdfMap wrong(other);
+  EXPECT_THROW(fusion.map().downloadBlocks(fusion.lastTouchedBlocks(), wrong), InputError);
+}
+
 TEST(TsdfIntegration, DeviceMatchesReferenceOnAnalyticScene) {
   const auto dataset = analyticDataset(12);
   MapConfig config;  // the defaults (1/z^2 weight, point-to-plane) are covered by other tests

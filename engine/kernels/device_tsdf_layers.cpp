@@ -1,4 +1,6 @@
-// DeviceTsdfMap's layers (device_tsdf_map.h): more TSDF and label pools that follow the same slots.
+// DeviceTsdfMap's layers (device_tsdf_map.h): more TSDF and label pools that follow the same slots;
+// partial downloads.
+#include <algorithm>
 #include <string>
 #include <unordered_map>
 
@@ -109,6 +111,37 @@ const vk::Buffer& DeviceTsdfMap::tsdfLayer(int layer) const {
 vk::Buffer& DeviceTsdfMap::labelLayer(int layer) { return layerAt(label_layers_, layer, "label"); }
 const vk::Buffer& DeviceTsdfMap::labelLayer(int layer) const {
   return layerAt(label_layers_, layer, "label");
+}
+
+void DeviceTsdfMap::downloadBlocks(const std::vector<BlockIndex>& blocks, TsdfMap& out,
+                                   int layer) {
+  const vk::Buffer& pool = tsdfLayer(layer);
+  if (out.config().voxel_size_m != config_.voxel_size_m) {
+    throw InputError("downloadBlocks: the host map's voxel size differs from the device map's");
+  }
+  std::unordered_map<std::uint64_t, std::uint32_t> slot_of;
+  for (const auto& [key, slot] : readTable()) slot_of.emplace(key, slot);
+  std::vector<std::pair<std::uint32_t, BlockIndex>> wanted;  // (slot, block), by slot
+  for (const BlockIndex& b : blocks) {
+    const auto it = slot_of.find(packBlockKey(b));
+    if (it != slot_of.end() && it->second < block_count_) wanted.emplace_back(it->second, b);
+  }
+  std::sort(wanted.begin(), wanted.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
+  wanted.erase(std::unique(wanted.begin(), wanted.end(),
+                           [](const auto& a, const auto& b) { return a.first == b.first; }),
+               wanted.end());
+  // One copy per run of consecutive slots (blocks allocated together sit together).
+  std::vector<TsdfBlock> run;
+  for (std::size_t i = 0; i < wanted.size();) {
+    std::size_t end = i + 1;
+    while (end < wanted.size() && wanted[end].first == wanted[end - 1].first + 1) ++end;
+    run.resize(end - i);
+    vk::download(context_, pool, run.data(), run.size() * kBlockBytes,
+                 wanted[i].first * kBlockBytes);
+    for (std::size_t k = i; k < end; ++k) out.allocateBlock(wanted[k].second) = run[k - i];
+    i = end;
+  }
 }
 
 }  // namespace strata

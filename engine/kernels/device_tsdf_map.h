@@ -64,6 +64,10 @@ class DeviceTsdfMap {
 
   /// Explicit device->host copy of one TSDF layer (every allocated block, unobserved ones too).
   void download(TsdfMap& out, int layer = 0);
+  /// Device->host copy of some blocks of one TSDF layer into `out` (a map of this config): each
+  /// of `blocks` the device holds replaces out's copy; the others are left as they are. Costs the
+  /// hash table plus the listed blocks (what changed since the last copy, for incremental meshes).
+  void downloadBlocks(const std::vector<BlockIndex>& blocks, TsdfMap& out, int layer = 0);
   /// Replaces the device map with `map` (same config required): the block index becomes map's,
   /// TSDF layer 0 its voxels, every other layer unobserved / label 0.
   void upload(const TsdfMap& map);

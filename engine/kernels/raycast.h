@@ -31,6 +31,12 @@ struct RaycastImage {
 RaycastImage raycastReference(const TsdfMap& map, const CameraIntrinsics& intrinsics,
                               const Eigen::Isometry3d& T_W_C, const RaycastOptions& options = {});
 
+/// One ray of raycastReference (the same march): true on a hit, with the distance along the unit
+/// direction dir_W in *t_hit. Used by the sparse raycast of keyframe selection (select_samples.h).
+bool raycastRayReference(const TsdfMap& map, const Eigen::Vector3f& origin_W,
+                         const Eigen::Vector3f& dir_W, float t_min, float t_max,
+                         const RaycastOptions& options, float* t_hit);
+
 /// Device raycast with its output buffers kept between calls.
 class RaycastKernel {
  public:

@@ -74,6 +74,15 @@ Eigen::Vector3f surfaceNormal(const MarchContext& c, const Eigen::Vector3f& p_W)
 
 }  // namespace
 
+bool raycastRayReference(const TsdfMap& map, const Eigen::Vector3f& origin_W,
+                         const Eigen::Vector3f& dir_W, float t_min, float t_max,
+                         const RaycastOptions& options, float* t_hit) {
+  const MapConfig& config = map.config();
+  const MarchContext c{map, config.voxel_size_m, config.blockSize(), options.min_weight,
+                       options.max_steps};
+  return marchRay(c, origin_W, dir_W, t_min, t_max, t_hit);
+}
+
 RaycastImage raycastReference(const TsdfMap& map, const CameraIntrinsics& intrinsics,
                               const Eigen::Isometry3d& T_W_C, const RaycastOptions& options) {
   intrinsics.validate();

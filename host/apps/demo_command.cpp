@@ -12,6 +12,7 @@
 #include "apps/diff_outputs.h"
 #include "apps/diff_pipeline.h"
 #include "apps/progress.h"
+#include "apps/select_incremental.h"
 #include "apps/sim_setup.h"
 #include "apps/views.h"
 #include "change/evaluation_session.h"
@@ -134,6 +135,10 @@ DemoReport runDemoPipeline(const DemoOptions& o) {
   }
   for (auto& r : results) report.sessions.push_back(r.get());
   report.evaluation = evaluate(*world, result, sessions, info.change);
+  if (o.incremental) {
+    report.incremental_summary = summarizeIncremental(runIncremental(
+        *context, *world, sessions, map_config, info, report.evaluation, o.out_dir, o.quiet));
+  }
   report.total_s = info.total_s = secondsSince(start);
   writeDemoReport(report, result, files, info, (out / "report.json").string());
   return report;
@@ -153,6 +158,8 @@ CLI::App* addDemoCommand(CLI::App& app, DemoOptions& o) {
   demo->add_flag("--no-noise", o.no_noise, "Exact depth");
   demo->add_option("--device", o.device, "Vulkan device index or name substring");
   demo->add_flag("--quiet", o.quiet, "No progress bar");
+  demo->add_flag("--incremental", o.incremental,
+                 "Also select keyframes and fuse only those (issue 6); about doubles the time");
   return demo;
 }
 

@@ -26,6 +26,8 @@ struct DemoOptions {
   bool no_noise = false;
   std::string device;
   bool quiet = false;
+  /// Also run keyframe selection's incremental loop (issue 6): about doubles the demo's time.
+  bool incremental = false;
 };
 
 struct DemoReport;

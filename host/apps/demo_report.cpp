@@ -126,6 +126,7 @@ std::string summarizeDemo(const DemoReport& report, const std::string& out_dir) 
     << " % of the static surface seen within 2 cm of the static mesh, " << 100.0 * st.ghostShare()
     << " % of its area on moved objects. Wrote the static mesh, per-session meshes (fused and "
     << "true), views, label overlays, object meshes and report.json to " << out_dir << "/.";
+  if (!report.incremental_summary.empty()) s << " " << report.incremental_summary;
   return s.str();
 }
 

@@ -33,6 +33,7 @@ struct DemoReport {
   std::vector<SessionResult> sessions;
   change::WorldEvaluation evaluation;  // discovered objects and static map against the truth
   double total_s = 0.0;
+  std::string incremental_summary;  // `--incremental` (issue 6), "" without
 };
 
 /// Writes the report as JSON, atomically: the demo's figures, the evaluation and the change

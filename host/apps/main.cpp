@@ -9,6 +9,7 @@
 #include "apps/esdf_command.h"
 #include "apps/fuse_command.h"
 #include "apps/mesh_command.h"
+#include "apps/select_command.h"
 #include "apps/sim_command.h"
 #include "core/error.h"
 #include "vk/vk.h"
@@ -50,6 +51,8 @@ int main(int argc, char** argv) {
   CLI::App* diff = strata::apps::addDiffCommand(app, diff_options);
   strata::apps::EsdfOptions esdf_options;
   CLI::App* esdf = strata::apps::addEsdfCommand(app, esdf_options);
+  strata::apps::SelectOptions select_options;
+  CLI::App* select_cmd = strata::apps::addSelectCommand(app, select_options);
   CLI::App* devices = app.add_subcommand("devices", "List the Vulkan devices");
   try {
     app.parse(argc, argv);
@@ -62,6 +65,7 @@ int main(int argc, char** argv) {
   if (demo->parsed()) return strata::apps::runDemo(demo_options);
   if (diff->parsed()) return strata::apps::runDiff(diff_options);
   if (esdf->parsed()) return strata::apps::runEsdf(esdf_options);
+  if (select_cmd->parsed()) return strata::apps::runSelect(select_options);
   if (devices->parsed()) return listDevices();
   return runDefault();
 }

@@ -1,0 +1,64 @@
+// Host reference of shaders/raycast_samples.comp, and the sample grid both sides share.
+#include <cmath>
+#include <string>
+
+#include "core/error.h"
+#include "kernels/camera_math.h"
+#include "kernels/select_samples.h"
+#include "kernels/tsdf_sampling.h"
+
+namespace strata {
+
+SampleGrid SampleGrid::of(const CameraIntrinsics& intrinsics, int stride_px) {
+  intrinsics.validate();
+  if (stride_px < 1 || stride_px > std::min(intrinsics.width_px, intrinsics.height_px)) {
+    throw InputError("sample stride " + std::to_string(stride_px) +
+                     " px: must be in [1, the image's smaller side]");
+  }
+  SampleGrid grid;
+  grid.stride_px = stride_px;
+  grid.offset_px = stride_px / 2;
+  grid.width = (intrinsics.width_px - grid.offset_px + stride_px - 1) / stride_px;
+  grid.height = (intrinsics.height_px - grid.offset_px + stride_px - 1) / stride_px;
+  return grid;
+}
+
+SampleRaycast raycastSamplesReference(const TsdfMap& map, const CameraIntrinsics& intrinsics,
+                                      const Eigen::Isometry3d& T_W_C, int stride_px,
+                                      const RaycastOptions& options) {
+  validatePose(T_W_C, "sample raycast camera");
+  SampleRaycast out;
+  out.grid = SampleGrid::of(intrinsics, stride_px);
+  const std::size_t n = static_cast<std::size_t>(out.grid.count());
+  out.hit.assign(n, 0);
+  out.depth_m.assign(n, 0.0f);
+  out.color_rgba.assign(n, 0);
+  const MapConfig& config = map.config();
+  const FrameCamera camera = FrameCamera::from(intrinsics, T_W_C);
+  const Eigen::Matrix3f R_W_C = camera.T_W_C.topLeftCorner<3, 3>();
+  const Eigen::Vector3f origin_W = camera.T_W_C.topRightCorner<3, 1>();
+  for (int gy = 0; gy < out.grid.height; ++gy) {
+    for (int gx = 0; gx < out.grid.width; ++gx) {
+      const Eigen::Vector3f ray_C = pixelRay(static_cast<float>(out.grid.pixelU(gx)),
+                                             static_cast<float>(out.grid.pixelV(gy)), camera.K);
+      const float ray_scale = ray_C.norm();
+      const Eigen::Vector3f dir_W = R_W_C * (ray_C / ray_scale);
+      float t_hit = 0.0f;
+      if (!raycastRayReference(map, origin_W, dir_W, config.min_depth_m * ray_scale,
+                               config.max_depth_m * ray_scale, options, &t_hit)) {
+        continue;
+      }
+      const std::size_t i = static_cast<std::size_t>(gy) * out.grid.width + gx;
+      out.hit[i] = 1;
+      out.depth_m[i] = t_hit / ray_scale;
+      const Eigen::Vector3f p_W = origin_W + dir_W * t_hit;
+      const GlobalVoxelIndex nearest = (p_W / config.voxel_size_m).array().floor().cast<int>();
+      if (const TsdfVoxel* voxel = observedVoxel(map, nearest, options.min_weight)) {
+        out.color_rgba[i] = voxel->color_rgba & 0xFFFFFFu;
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace strata

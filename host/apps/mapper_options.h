@@ -1,0 +1,68 @@
+#pragma once
+// Options of strata-mapper (the LCM mapping process): where it listens, how it maps, what it
+// publishes and how often.
+#include <cstddef>
+#include <string>
+
+#include "lcm/channels.h"
+#include "map/map_config.h"
+
+namespace CLI {
+class App;
+}
+
+namespace strata::apps {
+
+struct MapperChannels {
+  std::string rgbd = lcm_io::kRgbdChannel;
+  std::string camera_info = lcm_io::kCameraInfoChannel;
+  std::string pose = lcm_io::kPoseChannel;
+  std::string command = lcm_io::kCommandChannel;
+  std::string mesh = lcm_io::kMeshChannel;
+  std::string esdf = lcm_io::kEsdfChannel;
+  std::string stats = lcm_io::kStatsChannel;
+  std::string change = lcm_io::kChangeChannel;
+  std::string keyframe = lcm_io::kKeyframeChannel;
+};
+
+struct MapperOptions {
+  /// LCM URL to listen on; output_url "" publishes on the same.
+  std::string url = lcm_io::kDefaultUrl;
+  std::string output_url;
+  MapperChannels channels;
+  /// Map settings; the voxel default is 5 cm (a live map on a CPU device keeps up at that size).
+  MapConfig map = defaultMapperMapConfig();
+  /// Written atomically on SAVE_MAP without a path and on SIGINT/SIGTERM; "" = not saved on exit.
+  std::string map_path = "strata_map.strata";
+  /// Mesh updates of changed blocks per second; <= 0: after every fused frame (lowest latency).
+  double mesh_rate_hz = 2.0;
+  /// ESDF slices per second (the ESDF is updated incrementally then); 0: no ESDF.
+  double esdf_rate_hz = 1.0;
+  float esdf_slice_z_m = 1.0f;
+  /// map_stats_t is published after every fused frame and at least this often.
+  double stats_rate_hz = 1.0;
+  /// Frames waiting to be fused; more arriving drop the oldest (counted).
+  std::size_t queue_capacity = 4;
+  /// Change detection per session (a second fusion into per-session layers): change events on
+  /// session end. Costs about one more fusion per frame.
+  bool change_detection = true;
+  /// Change detection: a voxel differs between a session and the static map by more than this
+  /// many voxels (lower finds smaller moves, labels more noise), and counts as observed in a
+  /// session once this many frames saw it (fewer: more of the session counts, noisier).
+  float change_threshold_voxels = 2.5f;
+  float change_min_weight = 3.0f;
+  /// Score every frame against the map before fusing it (keyframe_score_t): a raycast of a
+  /// sparse pixel grid, a few ms per frame.
+  bool keyframe_scores = true;
+  std::string device;  // Vulkan device index or name substring
+  bool quiet = false;
+
+  static MapConfig defaultMapperMapConfig();
+  /// Throws InputError naming the bad option.
+  void validate() const;
+};
+
+/// Registers strata-mapper's options on `app`.
+void addMapperOptions(CLI::App& app, MapperOptions& options);
+
+}  // namespace strata::apps

@@ -1,0 +1,42 @@
+#pragma once
+// The incremental loop of issue 6 inside `strata demo --incremental`: for each new session, select
+// its keyframes against the map built so far, fuse only the selected ones, and compare with fusing
+// everything: images used, surface coverage, keyframe-selection scores against the simulator's
+// truth (ours, NCC, histogram), device-vs-reference agreement, and change detection (issue 5) run
+// on the selected keyframes only against the demo's complete run.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "apps/diff_report.h"
+#include "change/evaluation_session.h"
+#include "change/evaluation_world.h"
+#include "select/selection_report.h"
+
+namespace strata::apps {
+
+struct IncrementalResult {
+  selection::Thresholds thresholds;
+  std::vector<selection::MethodResult> methods;  // ours, ncc, hist
+  selection::DeviceReferenceAgreement agreement;
+  selection::ImageUse images;             // keyframes fused after the first session
+  double coverage_complete = 0.0;         // surface coverage of the map fused from every keyframe
+  double coverage_incremental = 0.0;      // ... from the selected ones
+  change::ObjectCounts objects_complete;  // the demo's change detection (every keyframe)
+  change::ObjectCounts objects_incremental;  // ... on the selected keyframes
+  std::vector<std::string> files;
+  double wall_s = 0.0;
+};
+
+/// `sessions`: the demo's sessions, already fused by its complete run (their seen() surfaces are
+/// the truth both change detections are scored against); `complete`: that run's evaluation.
+IncrementalResult runIncremental(
+    vk::Context& context, const sim::World& world,
+    const std::vector<std::unique_ptr<change::RecordingSession>>& sessions,
+    const MapConfig& change_map, const DiffRunInfo& info, const change::WorldEvaluation& complete,
+    const std::string& out_dir, bool quiet);
+
+/// A few sentences for the demo's closing paragraph.
+std::string summarizeIncremental(const IncrementalResult& result);
+
+}  // namespace strata::apps

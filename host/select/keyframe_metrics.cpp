@@ -1,0 +1,228 @@
+// The host half of keyframe scoring: metrics from the raycast samples and the keyframe's images
+// (keyframe_scorer.h). Both the device and the reference path end here, so they decide alike.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+
+#include "core/error.h"
+#include "select/keyframe_scorer.h"
+
+namespace strata::selection {
+namespace {
+
+using Rgb = std::array<float, 3>;
+
+/// The keyframe's images at the sample pixels, beside the rendered ones.
+struct SamplePairs {
+  std::vector<Rgb> rendered;       // colour of the map at the hit (0 on a miss)
+  std::vector<Rgb> observed;       // the keyframe's colour at the sample pixel
+  std::vector<float> new_depth_m;  // the keyframe's depth, 0 where invalid
+};
+
+Rgb unpack(std::uint32_t rgba) {
+  return {static_cast<float>(rgba & 255u), static_cast<float>((rgba >> 8) & 255u),
+          static_cast<float>((rgba >> 16) & 255u)};
+}
+
+SamplePairs gatherPairs(const SampleRaycast& r, const RgbdFrame& frame) {
+  const SampleGrid& g = r.grid;
+  SamplePairs p;
+  p.rendered.resize(g.count());
+  p.observed.assign(g.count(), Rgb{0, 0, 0});
+  p.new_depth_m.assign(g.count(), 0.0f);
+  for (int gy = 0; gy < g.height; ++gy) {
+    for (int gx = 0; gx < g.width; ++gx) {
+      const int i = gy * g.width + gx;
+      const std::size_t pixel = static_cast<std::size_t>(g.pixelV(gy)) * frame.depth.width_px +
+                                static_cast<std::size_t>(g.pixelU(gx));
+      p.rendered[i] = unpack(r.color_rgba[i]);
+      const float d = frame.depth.depth_m[pixel];
+      p.new_depth_m[i] = std::isfinite(d) && d > 0.0f ? d : 0.0f;
+      if (frame.color.empty()) continue;
+      for (int c = 0; c < 3; ++c) p.observed[i][c] = frame.color.rgb[pixel * 3 + c];
+    }
+  }
+  return p;
+}
+
+/// 3x3 binomial blur over the grid, averaging only samples inside `mask` (the rendered hits), so
+/// both images are blurred over the same support.
+std::vector<Rgb> blurMasked(const std::vector<Rgb>& image, const std::vector<std::uint8_t>& mask,
+                            const SampleGrid& g) {
+  static constexpr float kTap[3] = {1.0f, 2.0f, 1.0f};
+  std::vector<Rgb> out(image.size(), Rgb{0, 0, 0});
+  for (int y = 0; y < g.height; ++y) {
+    for (int x = 0; x < g.width; ++x) {
+      if (!mask[y * g.width + x]) continue;
+      Rgb sum{0, 0, 0};
+      float weight = 0.0f;
+      for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int u = x + dx, v = y + dy;
+          if (u < 0 || v < 0 || u >= g.width || v >= g.height || !mask[v * g.width + u]) continue;
+          const float w = kTap[dx + 1] * kTap[dy + 1];
+          for (int c = 0; c < 3; ++c) sum[c] += w * image[v * g.width + u][c];
+          weight += w;
+        }
+      }
+      for (int c = 0; c < 3; ++c) out[y * g.width + x][c] = sum[c] / weight;
+    }
+  }
+  return out;
+}
+
+/// Per-sample chromaticity, 3 * rgb / (r + g + b): under the simulator's (and, roughly, real)
+/// Lambertian shading a change of light direction or intensity scales a pixel's three channels
+/// alike, which this removes. A global per-channel mean normalisation only removes a global
+/// change and left the office world's relit sessions "changed" everywhere.
+/// NOTE: a grey object in front of a grey wall has no chromatic contrast; the depth change
+/// metric covers that case.
+void normaliseColours(std::vector<Rgb>& image) {
+  constexpr float kMinSum = 30.0f;  // dark pixels: keep noise from exploding
+  for (auto& rgb : image) {
+    const float scale = 3.0f / std::max(rgb[0] + rgb[1] + rgb[2], kMinSum);
+    for (int c = 0; c < 3; ++c) rgb[c] *= scale;
+  }
+}
+
+/// Mean of the upper half of the values ("mean plus"): a change over a small part of the image
+/// still moves it, noise spread evenly moves it little.
+double upperHalfMean(std::vector<float> values) {
+  if (values.empty()) return 0.0;
+  const std::size_t half = values.size() / 2;
+  std::nth_element(values.begin(), values.begin() + half, values.end());
+  double sum = 0.0;
+  for (std::size_t i = half; i < values.size(); ++i) sum += values[i];
+  return sum / static_cast<double>(values.size() - half);
+}
+
+double colorChange(const SamplePairs& p, const SampleRaycast& r) {
+  std::vector<Rgb> rendered = blurMasked(p.rendered, r.hit, r.grid);
+  std::vector<Rgb> observed = blurMasked(p.observed, r.hit, r.grid);
+  normaliseColours(rendered);
+  normaliseColours(observed);
+  std::vector<float> differences;
+  for (std::size_t i = 0; i < rendered.size(); ++i) {
+    if (!r.hit[i]) continue;
+    float d = 0.0f;
+    for (int c = 0; c < 3; ++c) d += std::abs(rendered[i][c] - observed[i][c]);
+    differences.push_back(d / 3.0f);
+  }
+  return upperHalfMean(std::move(differences));
+}
+
+/// Share of the samples the map explains. With depth, only samples where the keyframe measured
+/// depth count: beyond the sensor's range (through a door, down a corridor) neither image has
+/// anything, and such samples must not read as new space. Without any valid depth: all samples.
+double coverage(const SampleRaycast& r, const SamplePairs& p, int* hits) {
+  int measured = 0, measured_hits = 0, all_hits = 0;
+  for (std::size_t i = 0; i < r.hit.size(); ++i) {
+    all_hits += r.hit[i];
+    if (p.new_depth_m[i] <= 0.0f) continue;
+    ++measured;
+    measured_hits += r.hit[i];
+  }
+  if (measured == 0) {
+    *hits = all_hits;
+    return static_cast<double>(all_hits) / static_cast<double>(r.hit.size());
+  }
+  *hits = measured_hits;
+  return static_cast<double>(measured_hits) / measured;
+}
+
+/// Per sample: the depth difference beyond the tolerance (noise and voxelisation count as no
+/// change), clipped so one far outlier cannot dominate.
+double depthChange(const SamplePairs& p, const SampleRaycast& r, const ScorerConfig& config) {
+  std::vector<float> differences;
+  for (std::size_t i = 0; i < r.hit.size(); ++i) {
+    if (!r.hit[i] || p.new_depth_m[i] <= 0.0f) continue;
+    const float beyond = std::abs(p.new_depth_m[i] - r.depth_m[i]) - config.depth_tolerance_m;
+    differences.push_back(std::clamp(beyond, 0.0f, config.max_depth_difference_m));
+  }
+  return upperHalfMean(std::move(differences));
+}
+
+float grey(const Rgb& rgb) { return (rgb[0] + rgb[1] + rgb[2]) / 3.0f; }
+
+/// Pearson correlation of two equally long series; 1 when either is constant and both are equal,
+/// 0 when only one is constant.
+double correlation(const std::vector<double>& a, const std::vector<double>& b) {
+  double ma = 0, mb = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) ma += a[i], mb += b[i];
+  ma /= a.size(), mb /= b.size();
+  double ab = 0, aa = 0, bb = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    ab += (a[i] - ma) * (b[i] - mb), aa += (a[i] - ma) * (a[i] - ma),
+        bb += (b[i] - mb) * (b[i] - mb);
+  }
+  if (aa <= 0.0 || bb <= 0.0) return aa == bb ? 1.0 : 0.0;
+  return ab / std::sqrt(aa * bb);
+}
+
+/// Baseline 1: normalised cross-correlation of the grey images (misses render black).
+double nccSimilarity(const SamplePairs& p) {
+  std::vector<double> a(p.rendered.size()), b(p.observed.size());
+  for (std::size_t i = 0; i < a.size(); ++i) a[i] = grey(p.rendered[i]), b[i] = grey(p.observed[i]);
+  return correlation(a, b);
+}
+
+/// Baseline 2: correlation of the grey-level histograms (misses render black).
+double histogramSimilarity(const SamplePairs& p, int bins) {
+  std::vector<double> a(bins, 0.0), b(bins, 0.0);
+  const auto bin = [bins](float g) {
+    return std::min(bins - 1, static_cast<int>(g * bins / 256.0f));
+  };
+  for (std::size_t i = 0; i < p.rendered.size(); ++i) {
+    a[bin(grey(p.rendered[i]))] += 1.0;
+    b[bin(grey(p.observed[i]))] += 1.0;
+  }
+  return correlation(a, b);
+}
+
+void checkSizes(const SampleRaycast& r, const RgbdFrame& frame) {
+  const SampleGrid& g = r.grid;
+  const bool grid_fits = g.width > 0 && g.height > 0 &&
+                         g.pixelU(g.width - 1) < frame.depth.width_px &&
+                         g.pixelV(g.height - 1) < frame.depth.height_px;
+  const std::size_t n = static_cast<std::size_t>(g.count());
+  if (!grid_fits || r.hit.size() != n || r.depth_m.size() != n || r.color_rgba.size() != n) {
+    throw InputError("keyframe '" + frame.name + "': raycast samples do not fit its " +
+                     std::to_string(frame.depth.width_px) + "x" +
+                     std::to_string(frame.depth.height_px) + " depth image");
+  }
+  if (!frame.color.empty() && (frame.color.width_px != frame.depth.width_px ||
+                               frame.color.height_px != frame.depth.height_px)) {
+    throw InputError("keyframe '" + frame.name + "': colour and depth sizes differ");
+  }
+}
+
+}  // namespace
+
+void ScorerConfig::validate() const {
+  if (sample_stride_px < 1) throw InputError("sample_stride_px must be >= 1");
+  if (!(min_weight >= 0.0f)) throw InputError("min_weight must be >= 0");
+  if (!(max_depth_difference_m > 0.0f)) throw InputError("max_depth_difference_m must be > 0");
+  if (!(depth_tolerance_m >= 0.0f)) throw InputError("depth_tolerance_m must be >= 0");
+  if (histogram_bins < 2) throw InputError("histogram_bins must be >= 2");
+}
+
+KeyframeScore scoreSamples(const SampleRaycast& rendered, const RgbdFrame& frame,
+                           const ScorerConfig& config) {
+  checkSizes(rendered, frame);
+  const SamplePairs pairs = gatherPairs(rendered, frame);
+  KeyframeScore s;
+  s.samples = rendered.grid.count();
+  s.coverage = coverage(rendered, pairs, &s.hits);
+  s.depth_change_m = depthChange(pairs, rendered, config);
+  if (frame.color.empty()) {
+    s.ncc = s.histogram = 1.0;  // nothing to compare: no evidence of change
+    return s;
+  }
+  s.color_change = colorChange(pairs, rendered);
+  s.ncc = nccSimilarity(pairs);
+  s.histogram = histogramSimilarity(pairs, config.histogram_bins);
+  return s;
+}
+
+}  // namespace strata::selection

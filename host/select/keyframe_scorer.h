@@ -1,0 +1,93 @@
+#pragma once
+// Keyframe selection by raycast reprojection (issue 6; DESIGN.md source item 1): the current map is
+// raycast into a keyframe's pose on a sparse pixel grid and compared with the keyframe's own
+// images.
+//   coverage  m_c = samples whose ray hits the map / samples (where the keyframe has depth, only
+//                   the samples with measured depth count: beyond its range nothing is new)
+//   change    m_delta = mean of the upper half of the per-sample absolute differences of the
+//                   blurred, colour-normalised (chromaticity: resists light changes) rendered and
+//                   new images (the upper half, so a small changed region counts)
+//   depth change  = the same statistic on |new depth - rendered depth| beyond a tolerance (metres),
+//                   where depth exists
+// plus the two image-similarity baselines (normalised cross-correlation, 10-bin histogram
+// correlation). Along a trajectory the metrics are smoothed, thresholded and the selection dilated
+// (keyframe_selection.h).
+//
+// This header is the stable API other components (the LCM mapper) call. Thread safety: a
+// KeyframeScorer is not thread safe (one per thread); scoreSamples/scoreKeyframeReference are.
+#include <cstdint>
+#include <vector>
+
+#include "core/types.h"
+#include "kernels/select_samples.h"
+#include "map/tsdf_map.h"
+#include "vk/vk.h"
+
+namespace strata {
+class DeviceTsdfMap;
+}
+
+namespace strata::selection {
+
+struct ScorerConfig {
+  /// Pixel step of the sample grid on both axes: 10 (the method's default) scores a 640x480 frame
+  /// from 64x48 rays; 1 is dense (slower, barely more informative after the blur).
+  int sample_stride_px = 10;
+  /// Voxels lighter than this count as unobserved: rays pass through them (a map fused with
+  /// constant weights counts frames).
+  float min_weight = 1e-6f;
+  /// Per-sample depth differences are clipped here so one far outlier cannot dominate the mean.
+  float max_depth_difference_m = 0.5f;
+  /// Depth differences up to this count as none: sensor noise (~2 cm at 4 m) plus the rendered
+  /// surface's voxelisation. 5 cm is also what the ground truth calls a moved surface.
+  float depth_tolerance_m = 0.05f;
+  /// Histogram baseline: bins of grey level.
+  int histogram_bins = 10;
+
+  /// Throws InputError naming the bad field.
+  void validate() const;
+};
+
+/// The metrics of one keyframe against the map. Similarities are in [-1, 1] (1 = identical).
+struct KeyframeScore {
+  int samples = 0;              // grid samples in the image
+  int hits = 0;                 // samples with measured depth (all without depth) hitting the map
+  double coverage = 0.0;        // hits / samples with measured depth (all without depth)
+  double color_change = 0.0;    // upper-half mean of normalised colour differences (~0..1)
+  double depth_change_m = 0.0;  // upper-half mean of |depth difference| (0 without depth)
+  double ncc = 0.0;             // baseline: normalised cross-correlation of grey images
+  double histogram = 0.0;       // baseline: correlation of grey-level histograms
+};
+
+/// Metrics from the raycast samples and the keyframe's images: the host half of scoring, shared
+/// by the device and reference paths so both decide alike from the same samples.
+KeyframeScore scoreSamples(const SampleRaycast& rendered, const RgbdFrame& frame,
+                           const ScorerConfig& config);
+
+/// Host reference: raycastSamplesReference + scoreSamples.
+KeyframeScore scoreKeyframeReference(const TsdfMap& map, const RgbdFrame& frame,
+                                     const CameraIntrinsics& intrinsics,
+                                     const ScorerConfig& config = {},
+                                     SampleRaycast* rendered = nullptr);
+
+/// Scores keyframes against a device map (its TSDF layer 0): raycast_samples.comp + scoreSamples.
+class KeyframeScorer {
+ public:
+  /// `context` must outlive the scorer. Validates the config.
+  KeyframeScorer(vk::Context& context, const ScorerConfig& config = {});
+
+  /// Scores `frame` (pose T_W_C, depth and colour of `intrinsics`' size; colour may be empty:
+  /// colour metrics are then 0) against `map`. Bad input throws InputError. `device_ms` (optional)
+  /// receives the raycast's device time; `rendered` (optional) the samples.
+  KeyframeScore score(DeviceTsdfMap& map, const RgbdFrame& frame,
+                      const CameraIntrinsics& intrinsics, double* device_ms = nullptr,
+                      SampleRaycast* rendered = nullptr);
+
+  const ScorerConfig& config() const { return config_; }
+
+ private:
+  ScorerConfig config_;
+  SampleRaycastKernel kernel_;
+};
+
+}  // namespace strata::selection

@@ -1,0 +1,139 @@
+#include "select/selection_loop.h"
+
+#include <algorithm>
+
+#include "kernels/camera_math.h"
+#include "kernels/tsdf_sampling.h"
+
+namespace strata::selection {
+namespace {
+
+/// True surface points of a keyframe on a coarse grid (for mapCoverage).
+void collectSurface(const sim::SimulatedFrame& frame, const Eigen::Isometry3d& true_T_W_C,
+                    const CameraIntrinsics& k, std::vector<Eigen::Vector3f>& out) {
+  constexpr int kStride = 8;
+  const Eigen::Vector4f K(k.fx_px, k.fy_px, k.cx_px, k.cy_px);
+  const Eigen::Isometry3f T_W_C = true_T_W_C.cast<float>();
+  for (int v = kStride / 2; v < k.height_px; v += kStride) {
+    for (int u = kStride / 2; u < k.width_px; u += kStride) {
+      const std::size_t i = static_cast<std::size_t>(v) * k.width_px + u;
+      if (!(frame.depth.depth_m[i] > 0.0f) || !(frame.depth_true.depth_m[i] > 0.0f)) continue;
+      const Eigen::Vector3f ray_C = pixelRay(static_cast<float>(u), static_cast<float>(v), K);
+      out.push_back(T_W_C * Eigen::Vector3f(ray_C * frame.depth_true.depth_m[i]));
+    }
+  }
+}
+
+}  // namespace
+
+std::size_t SessionRun::fusedCount() const {
+  return static_cast<std::size_t>(std::count(fused.begin(), fused.end(), 1));
+}
+
+SelectionLoop::SelectionLoop(vk::Context& context, const LoopConfig& config)
+    : config_(config),
+      fusion_(context, config.map),
+      scorer_(context, config.scorer),
+      thresholds_(config.selection.thresholds),
+      reference_thresholds_(config.selection.thresholds) {
+  config_.selection.validate();
+  config_.truth.validate();
+}
+
+void SelectionLoop::recordTruth(const sim::SimSessionDataset& session, std::size_t index,
+                                const sim::SimulatedFrame& frame, const TsdfMap& map,
+                                SessionRun& run) {
+  const Eigen::Isometry3d& T_W_C = session.truePoses()[index];
+  collectSurface(frame, T_W_C, session.intrinsics(), seen_points_W_);
+  if (run.session == 0) return;
+  run.truth.push_back(keyframeTruth(frame, T_W_C, session.intrinsics(),
+                                    session.world().session(run.session).changedIds(),
+                                    *previous_scene_, map, config_.truth));
+}
+
+void SelectionLoop::scoreSession(const sim::SimSessionDataset& session,
+                                 const std::vector<RgbdFrame>& frames, SessionRun& run,
+                                 const std::function<void(std::size_t)>& progress) {
+  TsdfMap map(config_.map);
+  if (config_.with_reference) fusion_.map().download(map);
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    double device_ms = 0.0;
+    SampleRaycast samples;
+    run.scores.push_back(scorer_.score(fusion_.map(), frames[i], session.intrinsics(), &device_ms,
+                                       config_.with_reference ? &samples : nullptr));
+    run.score_device_ms += device_ms;
+    if (config_.with_reference) {
+      SampleRaycast reference;
+      run.reference_scores.push_back(
+          scoreKeyframeReference(map, frames[i], session.intrinsics(), config_.scorer, &reference));
+      run.device_samples.push_back(std::move(samples));
+      run.reference_samples.push_back(std::move(reference));
+    }
+    if (progress) progress(i + 1);
+  }
+}
+
+const SessionRun& SelectionLoop::addSession(const sim::SimSessionDataset& session,
+                                            const std::function<void(std::size_t)>& progress) {
+  SessionRun run;
+  run.session = static_cast<int>(sessions_.size());
+  const std::size_t n = session.size();
+  std::vector<RgbdFrame> frames;
+  frames.reserve(n);
+  // Truth is judged against the map as it was before this session.
+  TsdfMap before(config_.map);
+  if (config_.with_truth && run.session > 0) fusion_.map().download(before);
+  for (std::size_t i = 0; i < n; ++i) {
+    sim::SimulatedFrame rendered = session.render(i);
+    if (config_.with_truth) recordTruth(session, i, rendered, before, run);
+    frames.push_back(sim::makeRgbdFrame(std::move(rendered), session.givenPoses()[i],
+                                        session.timestamp(i),
+                                        session.name() + " frame " + std::to_string(i)));
+  }
+  const auto step = [&](std::size_t offset) {
+    return [&, offset](std::size_t done) {
+      if (progress) progress(offset + done);
+    };
+  };
+  if (run.session > 0) {
+    scoreSession(session, frames, run, step(0));
+    SelectionConfig selection = config_.selection;
+    selection.thresholds = thresholds_;
+    run.selection = selectKeyframes(run.scores, selection);
+  }
+  const bool fuse_all = run.session == 0 || !config_.incremental;
+  run.fused = fuse_all ? std::vector<std::uint8_t>(n, 1) : run.selection.selected;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (run.fused[i]) fusion_.integrate(frames[i], session.intrinsics());
+    if (progress) progress(n + i + 1);
+  }
+  if (run.session == 0) {
+    scoreSession(session, frames, run, {});
+    if (config_.auto_thresholds) {
+      const int window = config_.selection.smoothing_window;
+      thresholds_ = autoThresholds(run.scores, window, config_.selection.thresholds);
+      if (config_.with_reference) {
+        reference_thresholds_ =
+            autoThresholds(run.reference_scores, window, config_.selection.thresholds);
+      }
+    }
+  }
+  if (config_.with_truth) previous_scene_ = session.world().buildScene(run.session);
+  sessions_.push_back(std::move(run));
+  return sessions_.back();
+}
+
+SurfaceCoverage SelectionLoop::mapCoverage() {
+  TsdfMap map(config_.map);
+  fusion_.map().download(map);
+  SurfaceCoverage c;
+  const float voxel_m = config_.map.voxel_size_m;
+  for (const Eigen::Vector3f& p_W : seen_points_W_) {
+    ++c.points;
+    const GlobalVoxelIndex v = (p_W / voxel_m).array().floor().cast<int>();
+    c.observed += observedVoxel(map, v, config_.truth.min_weight) != nullptr;
+  }
+  return c;
+}
+
+}  // namespace strata::selection

@@ -1,0 +1,87 @@
+#pragma once
+// The incremental reconstruction loop of issue 6 on simulated sessions: the first session is fused
+// completely (and, with automatic thresholds, scored against its own reconstruction); every later
+// session is scored against the map built so far, its keyframes selected, and only the selected
+// ones fused (incremental) or all of them (complete, the comparison). Optionally computes the
+// ground truth of every keyframe and scores it with the host reference too.
+// Thread safety: not thread safe.
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "kernels/device_fusion.h"
+#include "select/keyframe_scorer.h"
+#include "select/keyframe_selection.h"
+#include "select/selection_truth.h"
+#include "sim/session/sim_session.h"
+
+namespace strata::selection {
+
+struct LoopConfig {
+  /// The map keyframes are scored against and fused into.
+  MapConfig map;
+  ScorerConfig scorer;
+  /// Method, smoothing, dilation; its thresholds are used unless auto_thresholds.
+  SelectionConfig selection;
+  bool auto_thresholds = true;
+  /// Fuse only the selected keyframes of sessions after the first (false: fuse all: the complete
+  /// map the incremental one is compared with).
+  bool incremental = true;
+  /// Compute KeyframeTruth for keyframes of sessions >= 1 and keep the true surface points of every
+  /// keyframe for mapCoverage().
+  bool with_truth = false;
+  /// Also score every keyframe with the host reference (scoreKeyframeReference).
+  bool with_reference = false;
+  TruthConfig truth;
+};
+
+struct SessionRun {
+  int session = 0;
+  std::vector<KeyframeScore> scores;            // device; session 0: against its own map
+  std::vector<KeyframeScore> reference_scores;  // with_reference
+  std::vector<SampleRaycast> device_samples;    // with_reference: to compare hit masks
+  std::vector<SampleRaycast> reference_samples;
+  std::vector<KeyframeTruth> truth;  // with_truth, sessions >= 1
+  TrajectorySelection selection;     // sessions >= 1
+  std::vector<std::uint8_t> fused;   // keyframes fused into the map
+  double score_device_ms = 0.0;      // raycast device time, summed
+  std::size_t fusedCount() const;
+};
+
+class SelectionLoop {
+ public:
+  /// `context` must outlive the loop. Validates the configs.
+  SelectionLoop(vk::Context& context, const LoopConfig& config);
+
+  /// Runs one session (the first call is the first session). `progress(done)` after each keyframe
+  /// step (every keyframe is stepped twice: scored, then fused or skipped).
+  const SessionRun& addSession(const sim::SimSessionDataset& session,
+                               const std::function<void(std::size_t)>& progress = {});
+
+  const std::vector<SessionRun>& sessions() const { return sessions_; }
+  const Thresholds& thresholds() const { return thresholds_; }
+  /// The thresholds the reference scores of the first session give (with_reference).
+  const Thresholds& referenceThresholds() const { return reference_thresholds_; }
+  /// Share of the true surface points seen by every keyframe so far that the map has observed
+  /// (with_truth).
+  SurfaceCoverage mapCoverage();
+  DeviceFusion& fusion() { return fusion_; }
+  const LoopConfig& config() const { return config_; }
+
+ private:
+  void scoreSession(const sim::SimSessionDataset& session, const std::vector<RgbdFrame>& frames,
+                    SessionRun& run, const std::function<void(std::size_t)>& progress);
+  void recordTruth(const sim::SimSessionDataset& session, std::size_t index,
+                   const sim::SimulatedFrame& frame, const TsdfMap& map, SessionRun& run);
+
+  LoopConfig config_;
+  DeviceFusion fusion_;
+  KeyframeScorer scorer_;
+  Thresholds thresholds_;
+  Thresholds reference_thresholds_;
+  std::vector<SessionRun> sessions_;
+  std::vector<Eigen::Vector3f> seen_points_W_;  // true surface points of every keyframe
+  std::unique_ptr<sim::WorldScene> previous_scene_;
+};
+
+}  // namespace strata::selection

@@ -1,0 +1,144 @@
+#include "lcm_process_helpers.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
+#include <lcm/lcm-cpp.hpp>
+#include <sstream>
+#include <unordered_map>
+
+#include "lcm/channels.h"
+#include "lcm/convert_frame.h"
+#include "lcm/convert_pose.h"
+#include "lcm/lcm_time.h"
+#include "lcm_test_helpers.h"
+#include "map/block_index.h"
+
+namespace strata::test {
+
+namespace fs = std::filesystem;
+
+fs::path freshTestDir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("strata_test_lcm_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string readText(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::string namespaceReplayScript(const fs::path& dir, int frames) {
+  const std::string d = dir.string();
+  const std::string url = lcm_io::kDefaultUrl;
+  std::ostringstream s;
+  s << "ip link set lo up && ip route add 224.0.0.0/4 dev lo || exit 10\n"
+    << "lcm-logger -q -f -c "
+       "\"STRATA_MESH_UPDATE|STRATA_MAP_STATS|STRATA_ESDF_SLICE|STRATA_KEYFRAME_SCORE\" "
+       "--lcm-url=\""
+    << url << "\" " << d << "/outputs.lcm > " << d << "/logger.log 2>&1 &\n"
+    << "LOGGER=$!\n"
+    << STRATA_MAPPER_BIN << " --url \"" << url << "\" --map " << d
+    << "/map.strata --no-change --mesh-rate 0 --esdf-rate 2 > " << d << "/mapper.log 2>&1 &\n"
+    << "MAPPER=$!\n"
+    << STRATA_PLAY_BIN << " sim:room:0 --sim-frames " << frames << " --rate 0 --quiet --url \""
+    << url << "\" --mapper-timeout 60 > " << d << "/play.log 2>&1\n"
+    << "PLAY=$?\n"
+    << "kill -TERM $MAPPER; wait $MAPPER; MAPPER_RC=$?\n"
+    << "sleep 0.5; kill -INT $LOGGER; wait $LOGGER\n"
+    << "echo play=$PLAY mapper=$MAPPER_RC > " << d << "/rc.txt\n";
+  return s.str();
+}
+
+RecordedOutputs readRecordedOutputs(const fs::path& path) {
+  RecordedOutputs out;
+  lcm::LogFile log(path.string(), "r");
+  if (!log.good()) return out;
+  while (const lcm::LogEvent* event = log.readNextEvent()) {
+    if (event->channel == lcm_io::kMeshChannel) {
+      mesh_update_t update;
+      if (update.decode(event->data, 0, event->datalen) > 0) out.mesh_updates.push_back(update);
+    } else if (event->channel == lcm_io::kStatsChannel) {
+      map_stats_t stats;
+      if (stats.decode(event->data, 0, event->datalen) > 0) out.stats.push_back(stats);
+    } else if (event->channel == lcm_io::kEsdfChannel) {
+      esdf_slice_t slice;
+      if (slice.decode(event->data, 0, event->datalen) > 0) out.esdf_slices.push_back(slice);
+    } else if (event->channel == lcm_io::kKeyframeChannel) {
+      ++out.keyframe_scores;
+    }
+  }
+  return out;
+}
+
+std::size_t viewerTriangles(const std::vector<mesh_update_t>& updates) {
+  std::unordered_map<BlockIndex, std::size_t, BlockIndexHash> triangles;
+  for (const mesh_update_t& update : updates) {
+    if (update.full) triangles.clear();
+    for (const mesh_block_t& block : update.blocks) {
+      triangles[BlockIndex(block.index[0], block.index[1], block.index[2])] =
+          static_cast<std::size_t>(block.num_triangles);
+    }
+  }
+  std::size_t total = 0;
+  for (const auto& [block, count] : triangles) total += count;
+  return total;
+}
+
+void writeFrameLog(const fs::path& path, int frames, double period_s) {
+  const auto session = roomSession(0, 5);
+  lcm::LogFile log(path.string(), "w");
+  const std::int64_t t0 = lcm_io::nowUtime();
+  const auto write = [&](const std::string& channel, std::int64_t utime, const auto& message) {
+    std::vector<std::uint8_t> bytes(static_cast<std::size_t>(message.getEncodedSize()));
+    message.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+    lcm::LogEvent event{};
+    event.timestamp = utime;
+    event.channel = channel;
+    event.datalen = static_cast<std::int32_t>(bytes.size());
+    event.data = bytes.data();
+    log.writeEvent(&event);
+  };
+  write(lcm_io::kCameraInfoChannel, t0,
+        lcm_io::encodeCameraInfo(session->intrinsics(), "depth", t0));
+  for (int i = 0; i < frames; ++i) {
+    const std::int64_t utime = t0 + 1000 + static_cast<std::int64_t>(i * period_s * 1e6);
+    const RgbdFrame frame = session->load(static_cast<std::size_t>(i) % session->size());
+    write(lcm_io::kRgbdChannel, utime,
+          lcm_io::encodeFrame(frame, utime, "depth", i, lcm_io::FrameEncoding{}));
+  }
+}
+
+pid_t spawnMapper(const std::vector<std::string>& args, const fs::path& log) {
+  const pid_t pid = fork();
+  if (pid != 0) return pid;
+  const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  dup2(fd, STDOUT_FILENO);
+  dup2(fd, STDERR_FILENO);
+  std::vector<char*> argv;
+  std::string program = STRATA_MAPPER_BIN;
+  argv.push_back(program.data());
+  std::vector<std::string> copies = args;
+  for (std::string& a : copies) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  execv(program.c_str(), argv.data());
+  std::perror("execv strata-mapper");
+  _exit(127);
+}
+
+MapperSummary parseMapperSummary(const std::string& log) {
+  MapperSummary summary;
+  const std::size_t at = log.find("strata-mapper: received ");
+  if (at == std::string::npos) return summary;
+  std::sscanf(log.c_str() + at, "strata-mapper: received %lld frames, fused %lld",
+              &summary.received, &summary.fused);
+  return summary;
+}
+
+}  // namespace strata::test

@@ -1,0 +1,51 @@
+#pragma once
+// Helpers of the cross-process LCM tests: the namespace replay script, LCM logs written and read,
+// strata-mapper started as a child process.
+#include <sys/types.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "strata/esdf_slice_t.hpp"
+#include "strata/map_stats_t.hpp"
+#include "strata/mesh_update_t.hpp"
+
+namespace strata::test {
+
+std::filesystem::path freshTestDir(const std::string& name);
+std::string readText(const std::filesystem::path& path);
+
+/// Bash (no single quotes) for `unshare --net bash -c`: loopback up, multicast routed to it,
+/// lcm-logger recording the mapper's outputs to dir/outputs.lcm, strata-mapper (map saved to
+/// dir/map.strata on SIGTERM), strata-play of `frames` frames of the room's session 0 as fast as
+/// the mapper fuses, then SIGTERM to the mapper; exit codes to dir/rc.txt, logs beside them.
+std::string namespaceReplayScript(const std::filesystem::path& dir, int frames);
+
+struct RecordedOutputs {
+  std::vector<mesh_update_t> mesh_updates;
+  std::vector<map_stats_t> stats;
+  std::vector<esdf_slice_t> esdf_slices;
+  std::size_t keyframe_scores = 0;
+};
+RecordedOutputs readRecordedOutputs(const std::filesystem::path& log);
+
+/// Triangles a viewer holds after applying `updates` in order (latest mesh per block).
+std::size_t viewerTriangles(const std::vector<mesh_update_t>& updates);
+
+/// An LCM log of camera info and `frames` RGB-D frames (the room's first frames, repeated),
+/// `period_s` apart, for the file:// provider.
+void writeFrameLog(const std::filesystem::path& path, int frames, double period_s);
+
+/// Starts strata-mapper with `args`, stdout and stderr to `log`; returns its pid (-1 on failure).
+pid_t spawnMapper(const std::vector<std::string>& args, const std::filesystem::path& log);
+
+struct MapperSummary {
+  long long received = -1;
+  long long fused = -1;
+};
+/// The numbers of strata-mapper's closing summary line.
+MapperSummary parseMapperSummary(const std::string& log);
+
+}  // namespace strata::test
