@@ -3,7 +3,6 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
-#include "core/atomic_file.h"
 #include "core/error.h"
 #include "diff_runs.h"
 #include "machine_info.h"
@@ -90,12 +89,7 @@ int runChecked(const DiffBenchOptions& o) {
                     .set("summary", diffSummaryJson(run))
                     .set("sessions", sessions)
                     .set("checks_passed", run.ok);
-  const std::string text = report.dump() + "\n";
-  std::fputs(text.c_str(), stdout);
-  if (!o.out_path.empty()) {
-    writeFileAtomically(o.out_path, std::vector<std::uint8_t>(text.begin(), text.end()));
-    std::fprintf(stderr, "wrote %s\n", o.out_path.c_str());
-  }
+  emitReport(report, o.out_path);
   if (!run.ok) std::fprintf(stderr, "strata-bench diff: a self-check failed\n");
   return run.ok ? 0 : 1;
 }

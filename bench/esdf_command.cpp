@@ -5,7 +5,6 @@
 #include <filesystem>
 #include <memory>
 
-#include "core/atomic_file.h"
 #include "core/error.h"
 #include "esdf_runs.h"
 #include "fuse_runs.h"  // kWarmupFrames
@@ -104,12 +103,7 @@ int runChecked(EsdfBenchOptions o) {
           .set("voxblox_reference", voxbloxJson())
           .set("results", Json::array().push(esdfRunReport(real)).push(esdfRunReport(synthetic)))
           .set("checks_passed", ok);
-  const std::string text = report.dump() + "\n";
-  std::fputs(text.c_str(), stdout);
-  if (!o.out_path.empty()) {
-    writeFileAtomically(o.out_path, std::vector<std::uint8_t>(text.begin(), text.end()));
-    std::fprintf(stderr, "wrote %s\n", o.out_path.c_str());
-  }
+  emitReport(report, o.out_path);
   if (!ok) std::fprintf(stderr, "strata-bench esdf: a self-check failed (see checks_passed)\n");
   return ok ? 0 : 1;
 }

@@ -5,7 +5,6 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "core/atomic_file.h"
 #include "core/error.h"
 #include "fuse_runs.h"
 #include "machine_info.h"
@@ -142,12 +141,7 @@ int runChecked(FuseBenchOptions options) {
                                                   rss_before_runs_mib, peer.get()))
                     .set("results", results)
                     .set("checks_passed", ok);
-  const std::string text = report.dump() + "\n";
-  std::fputs(text.c_str(), stdout);
-  if (!options.out_path.empty()) {
-    writeFileAtomically(options.out_path, std::vector<std::uint8_t>(text.begin(), text.end()));
-    std::fprintf(stderr, "wrote %s\n", options.out_path.c_str());
-  }
+  emitReport(report, options.out_path);
   if (!ok) std::fprintf(stderr, "strata-bench fuse: a self-check failed (see \"checks\")\n");
   return ok ? 0 : 1;
 }

@@ -2,6 +2,9 @@
 
 #include <cmath>
 #include <cstdio>
+#include <vector>
+
+#include "core/atomic_file.h"
 
 namespace strata::bench {
 namespace {
@@ -126,6 +129,14 @@ void Json::write(std::string& out, int depth) const {
   }
   if (!members_.empty()) newline(out, depth);
   out += is_object ? '}' : ']';
+}
+
+void emitReport(const Json& report, const std::string& out_path) {
+  const std::string text = report.dump() + "\n";
+  std::fputs(text.c_str(), stdout);
+  if (out_path.empty()) return;
+  writeFileAtomically(out_path, std::vector<std::uint8_t>(text.begin(), text.end()));
+  std::fprintf(stderr, "wrote %s\n", out_path.c_str());
 }
 
 }  // namespace strata::bench

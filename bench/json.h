@@ -44,4 +44,8 @@ class Json {
   std::vector<std::pair<std::string, Json>> members_;  // object members or array elements
 };
 
+/// Prints `report` on stdout and, when `out_path` is not empty, also writes it there atomically
+/// (a note on stderr says so).
+void emitReport(const Json& report, const std::string& out_path);
+
 }  // namespace strata::bench

@@ -3,7 +3,6 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
-#include "core/atomic_file.h"
 #include "core/error.h"
 #include "lcm_runs.h"
 #include "machine_info.h"
@@ -100,9 +99,7 @@ int runLcmBench(const LcmBenchOptions& o) {
                                  static_cast<std::int64_t>(run.frames_sent);
       runs.push(lcmRunJson(run));
     }
-    const std::string json = report(o, intrinsics, context->deviceName(), load, runs).dump();
-    std::printf("%s\n", json.c_str());
-    if (!o.out_path.empty()) writeFileAtomically(o.out_path, {json.begin(), json.end()});
+    emitReport(report(o, intrinsics, context->deviceName(), load, runs), o.out_path);
     if (!complete) std::fprintf(stderr, "strata-bench lcm: frames went missing (self-check)\n");
     return complete ? 0 : 1;
   } catch (const InputError& e) {

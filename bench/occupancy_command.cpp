@@ -5,7 +5,6 @@
 #include <memory>
 
 #include "apps/sim_setup.h"
-#include "core/atomic_file.h"
 #include "core/error.h"
 #include "eval/occupancy_compare.h"
 #include "json.h"
@@ -151,12 +150,7 @@ int runChecked(const OccupancyBenchOptions& o) {
                                          .set("notes", notes()))
                     .set("results", std::move(results))
                     .set("checks_passed", ok);
-  const std::string text = report.dump() + "\n";
-  std::fputs(text.c_str(), stdout);
-  if (!o.out_path.empty()) {
-    writeFileAtomically(o.out_path, std::vector<std::uint8_t>(text.begin(), text.end()));
-    std::fprintf(stderr, "wrote %s\n", o.out_path.c_str());
-  }
+  emitReport(report, o.out_path);
   if (!ok) std::fprintf(stderr, "strata-bench occupancy: device and reference disagree\n");
   return ok ? 0 : 1;
 }

@@ -5,7 +5,6 @@
 #include <chrono>
 #include <cstdio>
 
-#include "core/atomic_file.h"
 #include "core/error.h"
 #include "json.h"
 #include "kernels/device_fusion.h"
@@ -146,11 +145,7 @@ int runChecked(const SelectBenchOptions& o) {
                     .set("settings", settings)
                     .set("runs", runs)
                     .set("checks_passed", ok);
-  const std::string text = report.dump() + "\n";
-  std::fputs(text.c_str(), stdout);
-  if (!o.out_path.empty()) {
-    writeFileAtomically(o.out_path, std::vector<std::uint8_t>(text.begin(), text.end()));
-  }
+  emitReport(report, o.out_path);
   if (!ok) std::fprintf(stderr, "strata-bench select: device and reference hit masks differ\n");
   return ok ? 0 : 1;
 }

@@ -5,7 +5,6 @@
 #include <chrono>
 #include <cstdio>
 
-#include "core/atomic_file.h"
 #include "core/error.h"
 #include "json.h"
 #include "machine_info.h"
@@ -74,11 +73,7 @@ int runSimBench(const SimBenchOptions& o) {
                       .set("machine", machineInfo("host CPU (Embree ray casting)", load_at_start))
                       .set("warmup_frames_excluded", kWarmupFrames)
                       .set("results", results);
-    const std::string text = report.dump() + "\n";
-    std::printf("%s", text.c_str());
-    if (!o.out_path.empty()) {
-      writeFileAtomically(o.out_path, std::vector<std::uint8_t>(text.begin(), text.end()));
-    }
+    emitReport(report, o.out_path);
     return 0;
   } catch (const InputError& e) {
     std::fprintf(stderr, "strata-bench sim: input error: %s\n", e.what());

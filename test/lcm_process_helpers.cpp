@@ -77,20 +77,6 @@ RecordedOutputs readRecordedOutputs(const fs::path& path) {
   return out;
 }
 
-std::size_t viewerTriangles(const std::vector<mesh_update_t>& updates) {
-  std::unordered_map<BlockIndex, std::size_t, BlockIndexHash> triangles;
-  for (const mesh_update_t& update : updates) {
-    if (update.full) triangles.clear();
-    for (const mesh_block_t& block : update.blocks) {
-      triangles[BlockIndex(block.index[0], block.index[1], block.index[2])] =
-          static_cast<std::size_t>(block.num_triangles);
-    }
-  }
-  std::size_t total = 0;
-  for (const auto& [block, count] : triangles) total += count;
-  return total;
-}
-
 void writeFrameLog(const fs::path& path, int frames, double period_s) {
   const auto session = roomSession(0, 5);
   lcm::LogFile log(path.string(), "w");

@@ -31,9 +31,6 @@ struct RecordedOutputs {
 };
 RecordedOutputs readRecordedOutputs(const std::filesystem::path& log);
 
-/// Triangles a viewer holds after applying `updates` in order (latest mesh per block).
-std::size_t viewerTriangles(const std::vector<mesh_update_t>& updates);
-
 /// An LCM log of camera info and `frames` RGB-D frames (the room's first frames, repeated),
 /// `period_s` apart, for the file:// provider.
 void writeFrameLog(const std::filesystem::path& path, int frames, double period_s);

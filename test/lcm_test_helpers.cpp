@@ -45,10 +45,9 @@ map_stats_t MapperOutputs::latestStats() {
   return stats.empty() ? map_stats_t{} : stats.back();
 }
 
-std::size_t MapperOutputs::viewerTriangles() {
-  std::lock_guard<std::mutex> lock(mutex);
+std::size_t viewerTriangles(const std::vector<mesh_update_t>& updates) {
   std::unordered_map<BlockIndex, std::size_t, BlockIndexHash> triangles;
-  for (const mesh_update_t& update : mesh_updates) {
+  for (const mesh_update_t& update : updates) {
     if (update.full) triangles.clear();
     for (const mesh_block_t& block : update.blocks) {
       triangles[BlockIndex(block.index[0], block.index[1], block.index[2])] =
@@ -58,6 +57,11 @@ std::size_t MapperOutputs::viewerTriangles() {
   std::size_t total = 0;
   for (const auto& [block, count] : triangles) total += count;
   return total;
+}
+
+std::size_t MapperOutputs::viewerTriangles() {
+  std::lock_guard<std::mutex> lock(mutex);
+  return test::viewerTriangles(mesh_updates);
 }
 
 InProcessMapper::InProcessMapper(const apps::MapperOptions& options) : lcm_("memq://") {

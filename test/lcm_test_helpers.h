@@ -22,6 +22,9 @@
 
 namespace strata::test {
 
+/// Latest mesh per block over `updates` (what a viewer shows), as one mesh's triangle count.
+std::size_t viewerTriangles(const std::vector<mesh_update_t>& updates);
+
 /// Everything the mapper publishes, kept for assertions. Handlers run on the mapper's receive
 /// thread (memq delivers through the one LCM object), so access goes through the mutex.
 struct MapperOutputs {

@@ -18,6 +18,7 @@
 #include "lcm/convert_pose.h"
 #include "lcm/lcm_time.h"
 #include "lcm_process_helpers.h"
+#include "lcm_test_helpers.h"
 #include "map/map_file.h"
 #include "mesh/extract_mesh.h"
 #include "sim/session/sim_session.h"
