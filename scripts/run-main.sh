@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # README command 1: install dependencies, build in Release, run the main job. With no argument it
-# fuses the built-in analytic scene; with arguments they go to `strata` (e.g. `fuse DIR --mesh m.ply`).
+# runs the multi-session demo on the shipped room; arguments go to `strata` (e.g. `fuse DIR`).
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$ROOT/scripts/install-deps.sh"
