@@ -136,8 +136,10 @@ DemoReport runDemoPipeline(const DemoOptions& o) {
   for (auto& r : results) report.sessions.push_back(r.get());
   report.evaluation = evaluate(*world, result, sessions, info.change);
   if (o.incremental) {
-    report.incremental_summary = summarizeIncremental(runIncremental(
-        *context, *world, sessions, map_config, info, report.evaluation, o.out_dir, o.quiet));
+    const IncrementalResult incremental = runIncremental(
+        *context, *world, sessions, map_config, info, report.evaluation, o.out_dir, o.quiet);
+    report.incremental_summary = summarizeIncremental(incremental);
+    report.incremental_json = incrementalJson(incremental);
   }
   report.total_s = info.total_s = secondsSince(start);
   writeDemoReport(report, result, files, info, (out / "report.json").string());

@@ -86,6 +86,9 @@ void writeDemoReport(const DemoReport& report, const DiffResult& result, const D
   }
   out << "  ],\n";
   writeEvaluation(out, report.evaluation);
+  if (!report.incremental_json.empty()) {
+    out << "  \"incremental\": " << report.incremental_json << ",\n";
+  }
   out << "  \"change_detection\": {\n";
   writeDiffJsonMembers(out, result, files, info, 4);
   out << "\n  }\n}\n";

@@ -34,6 +34,7 @@ struct DemoReport {
   change::WorldEvaluation evaluation;  // discovered objects and static map against the truth
   double total_s = 0.0;
   std::string incremental_summary;  // `--incremental` (issue 6), "" without
+  std::string incremental_json;     // the same as a JSON object, "" without
 };
 
 /// Writes the report as JSON, atomically: the demo's figures, the evaluation and the change

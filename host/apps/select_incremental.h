@@ -38,5 +38,7 @@ IncrementalResult runIncremental(
 
 /// A few sentences for the demo's closing paragraph.
 std::string summarizeIncremental(const IncrementalResult& result);
+/// The same figures as one JSON object (report.json's "incremental").
+std::string incrementalJson(const IncrementalResult& result);
 
 }  // namespace strata::apps

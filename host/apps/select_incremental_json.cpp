@@ -1,0 +1,54 @@
+// The incremental loop's results as a JSON object for the demo's report.json.
+#include <sstream>
+
+#include "apps/select_incremental.h"
+#include "core/json_text.h"
+
+namespace strata::apps {
+namespace {
+
+void writeConfusion(std::ostringstream& out, const selection::MethodResult& m) {
+  const selection::Confusion& c = m.confusion;
+  out << "{\"method\": " << jsonQuoted(selection::methodName(m.method))
+      << ", \"recall\": " << c.recall() << ", \"precision\": " << c.precision()
+      << ", \"accuracy\": " << c.accuracy() << ", \"selected\": " << m.selected
+      << ", \"true_positive\": " << c.true_positive << ", \"false_positive\": " << c.false_positive
+      << ", \"true_negative\": " << c.true_negative << ", \"false_negative\": " << c.false_negative
+      << "}";
+}
+
+void writeObjects(std::ostringstream& out, const change::ObjectCounts& o) {
+  out << "{\"moved\": " << o.moved << ", \"found\": " << o.found << ", \"recall\": " << o.recall()
+      << ", \"precision\": " << o.precision() << ", \"over_segmented\": " << o.over_segmented
+      << ", \"under_segmented\": " << o.under_segmented << "}";
+}
+
+}  // namespace
+
+std::string incrementalJson(const IncrementalResult& r) {
+  std::ostringstream out;
+  out.precision(6);
+  const selection::Thresholds& t = r.thresholds;
+  out << "{\"thresholds\": {\"coverage\": " << t.coverage << ", \"color_change\": "
+      << t.color_change << ", \"depth_change_m\": " << t.depth_change_m << ", \"ncc\": " << t.ncc
+      << ", \"histogram\": " << t.histogram << "}, \"methods\": [";
+  for (std::size_t i = 0; i < r.methods.size(); ++i) {
+    if (i > 0) out << ", ";
+    writeConfusion(out, r.methods[i]);
+  }
+  out << "], \"device_vs_reference\": {\"samples\": " << r.agreement.samples
+      << ", \"hit_mismatches\": " << r.agreement.hit_mismatches
+      << ", \"keyframes\": " << r.agreement.keyframes
+      << ", \"decision_mismatches\": " << r.agreement.decision_mismatches
+      << "}, \"keyframes_after_first_session\": {\"fused\": " << r.images.fused
+      << ", \"total\": " << r.images.total << ", \"share\": " << r.images.share()
+      << "}, \"surface_coverage\": {\"complete\": " << r.coverage_complete
+      << ", \"incremental\": " << r.coverage_incremental << "}, \"objects_complete\": ";
+  writeObjects(out, r.objects_complete);
+  out << ", \"objects_incremental\": ";
+  writeObjects(out, r.objects_incremental);
+  out << ", \"wall_s\": " << r.wall_s << "}";
+  return out.str();
+}
+
+}  // namespace strata::apps
