@@ -3,10 +3,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <filesystem>
 
 #include "apps/diff_pipeline.h"
 #include "apps/progress.h"
+#include "apps/select_outputs.h"
 #include "apps/select_plot.h"
 #include "io/image_io.h"
 
@@ -77,6 +79,31 @@ change::ObjectCounts detectOnSelected(vk::Context& context, const sim::World& wo
   return change::evaluateWorld(world, objects, result.static_mesh, seen, eval_config).totals;
 }
 
+/// Per session after the first: the plot of the metrics along the trajectory with the selected and
+/// the truly positive keyframes, and the same as CSV (metrics, decisions, true pixel shares).
+void writeSessionFiles(const selection::SelectionLoop& loop, const Sessions& sessions,
+                       const std::string& out_dir, std::vector<std::string>& files) {
+  selection::SelectionConfig config = loop.config().selection;
+  config.thresholds = loop.thresholds();
+  for (const auto& run : loop.sessions()) {
+    if (run.session == 0) continue;
+    const std::filesystem::path stem =
+        std::filesystem::path(out_dir) / ("select_session_" + std::to_string(run.session));
+    std::vector<std::uint8_t> truth;
+    std::vector<ScoredKeyframe> keyframes(run.scores.size());
+    for (std::size_t i = 0; i < run.scores.size(); ++i) {
+      keyframes[i].name = "keyframe_" + std::to_string(i);
+      keyframes[i].timestamp_s = sessions.at(run.session)->session().timestamp(i);
+      keyframes[i].score = run.scores[i];
+    }
+    for (const auto& t : run.truth) truth.push_back(t.positive ? 1 : 0);
+    writeColorPng(stem.string() + ".png", renderSelectionPlot(run.selection, config, truth));
+    writeSelectionCsv(stem.string() + ".csv", keyframes, run.selection, run.truth);
+    files.push_back(stem.string() + ".png");
+    files.push_back(stem.string() + ".csv");
+  }
+}
+
 }  // namespace
 
 IncrementalResult runIncremental(vk::Context& context, const sim::World& world,
@@ -104,17 +131,7 @@ IncrementalResult runIncremental(vk::Context& context, const sim::World& world,
   r.images = selection::imagesAfterFirstSession(incremental);
   r.coverage_complete = full.mapCoverage().ratio();
   r.coverage_incremental = incremental.mapCoverage().ratio();
-  for (const auto& run : incremental.sessions()) {
-    if (run.session == 0) continue;
-    const auto path =
-        std::filesystem::path(out_dir) / ("select_session_" + std::to_string(run.session) + ".png");
-    writeColorPng(path.string(), renderSelectionPlot(run.selection, [&] {
-                    selection::SelectionConfig c = incremental.config().selection;
-                    c.thresholds = incremental.thresholds();
-                    return c;
-                  }()));
-    r.files.push_back(path.string());
-  }
+  writeSessionFiles(incremental, sessions, out_dir, r.files);
   r.objects_complete = complete.totals;
   r.objects_incremental =
       detectOnSelected(context, world, sessions, change_map, info, incremental, quiet);

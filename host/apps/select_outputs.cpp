@@ -1,6 +1,8 @@
 #include "apps/select_outputs.h"
 
+#include <algorithm>
 #include <cstdio>
+#include <stdexcept>
 #include <filesystem>
 
 #include "apps/select_plot.h"
@@ -10,11 +12,17 @@
 namespace strata::apps {
 
 void writeSelectionCsv(const std::string& path, const std::vector<ScoredKeyframe>& keyframes,
-                       const selection::TrajectorySelection& s) {
+                       const selection::TrajectorySelection& s,
+                       const std::vector<selection::KeyframeTruth>& truth) {
+  const bool with_truth = !truth.empty();
+  if (with_truth && truth.size() != keyframes.size()) {
+    throw std::invalid_argument("writeSelectionCsv: one truth per keyframe expected");
+  }
   std::string text =
       "index,name,timestamp_s,coverage,color_change,depth_change_m,ncc,histogram,"
       "coverage_smoothed,color_change_smoothed,depth_change_m_smoothed,similarity_smoothed,"
-      "triggered,selected\n";
+      "triggered,selected";
+  text += with_truth ? ",true_changed_fraction,true_unmapped_fraction,true_positive\n" : "\n";
   for (std::size_t i = 0; i < keyframes.size(); ++i) {
     const selection::KeyframeScore& k = keyframes[i].score;
     std::string name = keyframes[i].name;
@@ -26,6 +34,14 @@ void writeSelectionCsv(const std::string& path, const std::vector<ScoredKeyframe
                   k.depth_change_m, k.ncc, k.histogram, s.coverage[i], s.color_change[i],
                   s.depth_change_m[i], s.similarity[i], s.triggered[i], s.selected[i]);
     text += line;
+    if (with_truth) {
+      const selection::KeyframeTruth& t = truth[i];
+      const double valid = std::max(1, t.valid_pixels);
+      std::snprintf(line, sizeof(line), ",%.5f,%.5f,%d\n", t.changed_pixels / valid,
+                    t.unmapped_pixels / valid, t.positive ? 1 : 0);
+      text.pop_back();  // the row goes on after the metrics
+      text += line;
+    }
   }
   writeFileAtomically(path, std::vector<std::uint8_t>(text.begin(), text.end()));
 }

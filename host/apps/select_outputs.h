@@ -6,6 +6,7 @@
 
 #include "core/types.h"
 #include "select/keyframe_selection.h"
+#include "select/selection_truth.h"
 
 namespace strata::apps {
 
@@ -16,9 +17,12 @@ struct ScoredKeyframe {
   ColorImage thumbnail;  // quarter size; empty without colour
 };
 
-/// keyframes.csv: index, name, timestamp, raw and smoothed metrics, triggered, selected.
+/// keyframes.csv: index, name, timestamp, raw and smoothed metrics, triggered, selected; with
+/// `truth` (one per keyframe, from the simulator) also the true changed and unmapped pixel shares
+/// and the true decision.
 void writeSelectionCsv(const std::string& path, const std::vector<ScoredKeyframe>& keyframes,
-                       const selection::TrajectorySelection& selection);
+                       const selection::TrajectorySelection& selection,
+                       const std::vector<selection::KeyframeTruth>& truth = {});
 
 /// selection.png and selected.png in `out_dir`; returns the paths written.
 std::vector<std::string> writeSelectionPictures(const std::string& out_dir,

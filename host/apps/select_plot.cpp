@@ -18,6 +18,7 @@ constexpr Rgb kAxis = {120, 120, 120};
 constexpr Rgb kCurve = {30, 90, 200};
 constexpr Rgb kThreshold = {210, 40, 40};
 constexpr Rgb kSelected = {40, 160, 70};
+constexpr Rgb kTruePositive = {70, 70, 190};
 constexpr Rgb kText = {20, 20, 20};
 
 struct Panel {
@@ -103,10 +104,14 @@ std::vector<Panel> panelsOf(const selection::TrajectorySelection& s,
 }  // namespace
 
 ColorImage renderSelectionPlot(const selection::TrajectorySelection& s,
-                               const selection::SelectionConfig& config) {
+                               const selection::SelectionConfig& config,
+                               const std::vector<std::uint8_t>& truth) {
   const std::vector<Panel> panels = panelsOf(s, config);
   const int strip_top = static_cast<int>(panels.size()) * kPanelHeight + 8;
-  ColorImage im(kWidth, strip_top + kStripHeight + 52, 255);
+  const bool with_truth = !truth.empty() && truth.size() == s.selected.size();
+  const int truth_top = strip_top + kStripHeight + 4;
+  const int caption_top = with_truth ? truth_top + kStripHeight + 8 : strip_top + kStripHeight + 8;
+  ColorImage im(kWidth, caption_top + 44 + (with_truth ? 20 : 0), 255);
   fillRect(im, 0, 0, im.width_px, im.height_px, kBackground);
   if (s.selected.empty()) return im;
   for (std::size_t p = 0; p < panels.size(); ++p) {
@@ -119,13 +124,25 @@ ColorImage renderSelectionPlot(const selection::TrajectorySelection& s,
     const int x = keyframeX(i, n);
     fillRect(im, x - half, strip_top, x + half, strip_top + kStripHeight,
              s.selected[i] ? kSelected : Rgb{225, 225, 225});
+    if (with_truth) {
+      fillRect(im, x - half, truth_top, x + half, truth_top + kStripHeight,
+               truth[i] ? kTruePositive : Rgb{225, 225, 225});
+    }
   }
   char caption[160];
   std::snprintf(caption, sizeof(caption), "%s: %zu OF %zu KEYFRAMES SELECTED (GREEN)",
                 selection::methodName(config.method), s.selectedCount(), n);
-  drawText(im, kMargin, strip_top + kStripHeight + 8, caption, 2, kText);
-  drawText(im, kMargin, strip_top + kStripHeight + 28,
+  drawText(im, kMargin, caption_top, caption, 2, kText);
+  drawText(im, kMargin, caption_top + 20,
            "RED DOTS: KEYFRAMES OVER A THRESHOLD (DASHED) BEFORE DILATION", 2, kText);
+  if (with_truth) {
+    std::size_t positives = 0;
+    for (std::uint8_t t : truth) positives += t ? 1 : 0;
+    std::snprintf(caption, sizeof(caption),
+                  "LOWER STRIP: %zu KEYFRAMES THAT TRULY SEE CHANGE OR UNMAPPED SPACE (BLUE)",
+                  positives);
+    drawText(im, kMargin, caption_top + 40, caption, 2, kText);
+  }
   return im;
 }
 

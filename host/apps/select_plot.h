@@ -1,6 +1,7 @@
 #pragma once
 // Pictures of a keyframe selection (issue 6): the metrics along the trajectory with their
 // thresholds and the selected keyframes, and a contact sheet of the selected images.
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -11,9 +12,11 @@ namespace strata::apps {
 
 /// One panel per metric the method uses (ours: coverage, colour change, depth change; baselines:
 /// the similarity), smoothed values as a curve, the threshold as a red line, triggered keyframes as
-/// dots, and a strip under the panels marking the selected keyframes.
+/// dots, and a strip under the panels marking the selected keyframes; with `truth` (one flag per
+/// keyframe, from the simulator) a second strip marks the keyframes that truly see change.
 ColorImage renderSelectionPlot(const selection::TrajectorySelection& selection,
-                               const selection::SelectionConfig& config);
+                               const selection::SelectionConfig& config,
+                               const std::vector<std::uint8_t>& truth = {});
 
 /// Thumbnails (any equal size) in a grid, each labelled with its keyframe index; at most
 /// `max_images` (evenly spread over the list when there are more).

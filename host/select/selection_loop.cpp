@@ -44,11 +44,25 @@ void SelectionLoop::recordTruth(const sim::SimSessionDataset& session, std::size
                                 const sim::SimulatedFrame& frame, const TsdfMap& map,
                                 SessionRun& run) {
   const Eigen::Isometry3d& T_W_C = session.truePoses()[index];
-  collectSurface(frame, T_W_C, session.intrinsics(), seen_points_W_);
+  session_surface_W_.emplace_back();
+  collectSurface(frame, T_W_C, session.intrinsics(), session_surface_W_.back());
+  seen_points_W_.insert(seen_points_W_.end(), session_surface_W_.back().begin(),
+                        session_surface_W_.back().end());
   if (run.session == 0) return;
   run.truth.push_back(keyframeTruth(frame, T_W_C, session.intrinsics(),
                                     session.world().session(run.session).changedIds(),
-                                    *previous_scene_, map, config_.truth));
+                                    history_, map, config_.truth));
+}
+
+void SelectionLoop::recordHistory(const sim::SimSessionDataset& session, const SessionRun& run) {
+  std::vector<Eigen::Vector3f> fused_surface_W;
+  for (std::size_t i = 0; i < session_surface_W_.size(); ++i) {
+    if (!run.fused.at(i)) continue;
+    fused_surface_W.insert(fused_surface_W.end(), session_surface_W_[i].begin(),
+                           session_surface_W_[i].end());
+  }
+  history_.addSession(session.world().buildScene(run.session), fused_surface_W);
+  session_surface_W_.clear();
 }
 
 void SelectionLoop::scoreSession(const sim::SimSessionDataset& session,
@@ -118,7 +132,7 @@ const SessionRun& SelectionLoop::addSession(const sim::SimSessionDataset& sessio
       }
     }
   }
-  if (config_.with_truth) previous_scene_ = session.world().buildScene(run.session);
+  if (config_.with_truth) recordHistory(session, run);
   sessions_.push_back(std::move(run));
   return sessions_.back();
 }

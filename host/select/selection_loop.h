@@ -12,6 +12,7 @@
 #include "kernels/device_fusion.h"
 #include "select/keyframe_scorer.h"
 #include "select/keyframe_selection.h"
+#include "select/map_history.h"
 #include "select/selection_truth.h"
 #include "sim/session/sim_session.h"
 
@@ -73,6 +74,8 @@ class SelectionLoop {
                     SessionRun& run, const std::function<void(std::size_t)>& progress);
   void recordTruth(const sim::SimSessionDataset& session, std::size_t index,
                    const sim::SimulatedFrame& frame, const TsdfMap& map, SessionRun& run);
+  /// After a session's fusion: its world and what its fused keyframes saw join history_.
+  void recordHistory(const sim::SimSessionDataset& session, const SessionRun& run);
 
   LoopConfig config_;
   DeviceFusion fusion_;
@@ -81,7 +84,9 @@ class SelectionLoop {
   Thresholds reference_thresholds_;
   std::vector<SessionRun> sessions_;
   std::vector<Eigen::Vector3f> seen_points_W_;  // true surface points of every keyframe
-  std::unique_ptr<sim::WorldScene> previous_scene_;
+  // This session's keyframes' true surface points, until their fusion is decided.
+  std::vector<std::vector<Eigen::Vector3f>> session_surface_W_;
+  MapHistory history_;  // the worlds and fused views the map was built from
 };
 
 }  // namespace strata::selection

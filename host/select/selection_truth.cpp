@@ -42,21 +42,20 @@ Eigen::Vector3f surfacePoint(const TruthPixel& p, const Eigen::Isometry3f& T_W_C
   return T_W_C * Eigen::Vector3f(p.ray_C * p.true_depth_m);
 }
 
-/// Per pixel: does the first surface along its ray in the previous world sit elsewhere?
+/// Per pixel: does the surface the map last observed along its ray sit elsewhere?
 std::vector<std::uint8_t> surfaceMoved(const std::vector<TruthPixel>& pixels,
-                                       const Eigen::Isometry3f& T_W_C,
-                                       const sim::RayScene& previous, float tolerance_m) {
+                                       const Eigen::Isometry3f& T_W_C, const MapHistory& history,
+                                       float tolerance_m) {
   std::vector<sim::Ray> rays(pixels.size());
   for (std::size_t i = 0; i < pixels.size(); ++i) {
     rays[i].origin_W = T_W_C.translation();
     rays[i].direction_W = T_W_C.linear() * pixels[i].ray_C.normalized();
   }
-  std::vector<sim::RayHit> hits;
-  previous.intersect(rays, hits);
+  const std::vector<float> observed_m = history.lastObservedDistance(rays);
   std::vector<std::uint8_t> moved(pixels.size(), 0);
   for (std::size_t i = 0; i < pixels.size(); ++i) {
     const float true_t = pixels[i].true_depth_m * pixels[i].ray_C.norm();
-    moved[i] = !hits[i].hit() || std::abs(hits[i].t_m - true_t) > tolerance_m;
+    moved[i] = observed_m[i] >= 0.0f && std::abs(observed_m[i] - true_t) > tolerance_m;
   }
   return moved;
 }
@@ -74,13 +73,13 @@ void TruthConfig::validate() const {
 
 KeyframeTruth keyframeTruth(const sim::SimulatedFrame& frame, const Eigen::Isometry3d& true_T_W_C,
                             const CameraIntrinsics& intrinsics, const std::vector<int>& changed_ids,
-                            const sim::RayScene& previous_scene, const TsdfMap& map,
+                            const MapHistory& history, const TsdfMap& map,
                             const TruthConfig& config) {
   config.validate();
   const Eigen::Isometry3f T_W_C = true_T_W_C.cast<float>();
   const std::vector<TruthPixel> pixels = validPixels(frame, intrinsics, config.pixel_stride);
   const std::vector<std::uint8_t> moved =
-      surfaceMoved(pixels, T_W_C, previous_scene, config.surface_tolerance_m);
+      surfaceMoved(pixels, T_W_C, history, config.surface_tolerance_m);
   KeyframeTruth t;
   t.valid_pixels = static_cast<int>(pixels.size());
   for (std::size_t i = 0; i < pixels.size(); ++i) {

@@ -6,9 +6,11 @@
 // `min_positive_fraction` (default 2 %) of its valid pixels (measured depth > 0: what the mapper
 // receives) see change or unmapped space:
 //  - change: the pixel's object id is one whose state differs from session N-1 (moved or added;
-//    SessionTruth::since_previous), or the first surface along the pixel's ray in session N-1's
-//    world lies more than `surface_tolerance_m` (5 cm) from the true surface now (covers removed
-//    objects: the wall or floor they hid is uncovered; and moved objects' old and new places);
+//    SessionTruth::since_previous), or the surface the map last observed along the pixel's ray
+//    (the first surface in the world of the latest session whose fused keyframes saw it:
+//    MapHistory) lies more than `surface_tolerance_m` (5 cm) from the true surface now (covers
+//    removed objects: the wall or floor they hid is uncovered; moved objects' old and new places;
+//    and changes of an earlier session that no fused keyframe of it looked at);
 //  - unmapped: the true surface point (exact depth from the true pose) lies in a voxel the map
 //    built so far has not observed (weight below min_weight, or no block).
 // NOTE on 2 %: at 640x480 it is ~6,000 pixels, a 0.35 m object at 2.5 m. Smaller glimpses (an
@@ -19,6 +21,7 @@
 
 #include "core/types.h"
 #include "map/tsdf_map.h"
+#include "select/map_history.h"
 #include "sim/ray_scene.h"
 #include "sim/sensors/rgbd_camera.h"
 
@@ -47,11 +50,11 @@ struct KeyframeTruth {
 };
 
 /// Truth of one keyframe. `frame` is the simulator's render of the keyframe at `true_T_W_C`;
-/// `changed_ids` the objects changed since the previous session; `previous_scene` that session's
-/// world; `map` the map built so far (host copy).
+/// `changed_ids` the objects changed since the previous session; `history` the sessions the map
+/// was built from; `map` the map built so far (host copy).
 KeyframeTruth keyframeTruth(const sim::SimulatedFrame& frame, const Eigen::Isometry3d& true_T_W_C,
                             const CameraIntrinsics& intrinsics, const std::vector<int>& changed_ids,
-                            const sim::RayScene& previous_scene, const TsdfMap& map,
+                            const MapHistory& history, const TsdfMap& map,
                             const TruthConfig& config = {});
 
 /// Share of the true surface points seen in `frame` (valid pixels on the grid) that `map` has
