@@ -38,6 +38,15 @@ bool observedAt(const TsdfMap& map, const Eigen::Vector3f& p_W, float min_weight
   return observedVoxel(map, v, min_weight) != nullptr;
 }
 
+/// Does the map hold the true surface at p_W: is its interpolated distance there within
+/// `tolerance_m` of zero? A voxel seen only as free space (before an object arrived, or carved by
+/// grazing rays past a thin chair back) is observed but does not hold the surface.
+bool holdsSurfaceAt(const TsdfMap& map, const Eigen::Vector3f& p_W, float min_weight,
+                    float tolerance_m) {
+  float tsdf_m = 0.0f;
+  return sampleTsdf(map, p_W, min_weight, &tsdf_m) && std::abs(tsdf_m) <= tolerance_m;
+}
+
 Eigen::Vector3f surfacePoint(const TruthPixel& p, const Eigen::Isometry3f& T_W_C) {
   return T_W_C * Eigen::Vector3f(p.ray_C * p.true_depth_m);
 }
@@ -85,7 +94,8 @@ KeyframeTruth keyframeTruth(const sim::SimulatedFrame& frame, const Eigen::Isome
   for (std::size_t i = 0; i < pixels.size(); ++i) {
     const int id = frame.object_ids.ids[pixels[i].index];
     const bool changed = moved[i] || std::binary_search(changed_ids.begin(), changed_ids.end(), id);
-    const bool unmapped = !observedAt(map, surfacePoint(pixels[i], T_W_C), config.min_weight);
+    const bool unmapped = !holdsSurfaceAt(map, surfacePoint(pixels[i], T_W_C), config.min_weight,
+                                          config.surface_tolerance_m);
     t.changed_pixels += changed;
     t.unmapped_pixels += unmapped;
     t.positive_pixels += changed || unmapped;
