@@ -78,6 +78,7 @@ void TruthConfig::validate() const {
   if (!(surface_tolerance_m > 0.0f)) throw InputError("surface_tolerance_m must be > 0");
   if (pixel_stride < 1) throw InputError("pixel_stride must be >= 1");
   if (!(min_weight > 0.0f)) throw InputError("min_weight must be > 0");
+  if (!(held_tolerance_voxels > 0.0f)) throw InputError("held_tolerance_voxels must be > 0");
 }
 
 KeyframeTruth keyframeTruth(const sim::SimulatedFrame& frame, const Eigen::Isometry3d& true_T_W_C,
@@ -89,13 +90,14 @@ KeyframeTruth keyframeTruth(const sim::SimulatedFrame& frame, const Eigen::Isome
   const std::vector<TruthPixel> pixels = validPixels(frame, intrinsics, config.pixel_stride);
   const std::vector<std::uint8_t> moved =
       surfaceMoved(pixels, T_W_C, history, config.surface_tolerance_m);
+  const float held_tolerance_m = config.held_tolerance_voxels * map.config().voxel_size_m;
   KeyframeTruth t;
   t.valid_pixels = static_cast<int>(pixels.size());
   for (std::size_t i = 0; i < pixels.size(); ++i) {
     const int id = frame.object_ids.ids[pixels[i].index];
     const bool changed = moved[i] || std::binary_search(changed_ids.begin(), changed_ids.end(), id);
     const bool unmapped = !holdsSurfaceAt(map, surfacePoint(pixels[i], T_W_C), config.min_weight,
-                                          config.surface_tolerance_m);
+                                          held_tolerance_m);
     t.changed_pixels += changed;
     t.unmapped_pixels += unmapped;
     t.positive_pixels += changed || unmapped;

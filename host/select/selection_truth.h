@@ -13,9 +13,11 @@
 //    and changes of an earlier session that no fused keyframe of it looked at);
 //  - unmapped: the map built so far does not hold the true surface point (exact depth from the
 //    true pose): its voxels there are unobserved (weight below min_weight, or no block), or their
-//    interpolated distance is more than `surface_tolerance_m` from zero (observed only as free
-//    space, or a thin part the map lost). Counting any observed voxel as mapped left 75 of the
-//    office's 240 later keyframes negative although the map rendered through chairs they showed.
+//    interpolated distance is more than `held_tolerance_voxels` (2) of the map's voxels from zero
+//    (observed only as free space, or a thin part the map lost). Counting any observed voxel as
+//    mapped left 75 of the office's 240 later keyframes negative although the map rendered
+//    through chairs they showed; a 5 cm tolerance on the 5 cm selection map made every keyframe of
+//    a room where one object moved per session positive (corners and chair legs a voxel off).
 // NOTE on 2 %: at 640x480 it is ~6,000 pixels, a 0.35 m object at 2.5 m. Smaller glimpses (an
 // object's corner at the image border) add little to the map and the neighbouring keyframes see
 // the change better; it is also ~60 samples of the 10 px grid, so a change above it is measurable.
@@ -37,6 +39,9 @@ struct TruthConfig {
   float surface_tolerance_m = 0.05f;
   /// Every n-th pixel on both axes is looked at.
   int pixel_stride = 4;
+  /// The map holds a true surface point when its interpolated distance there is within this many
+  /// of its voxels of zero.
+  float held_tolerance_voxels = 2.0f;
   /// Voxel weight from which the map counts a voxel as observed.
   float min_weight = 1.0f;
 
