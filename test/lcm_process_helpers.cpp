@@ -21,7 +21,9 @@ namespace strata::test {
 namespace fs = std::filesystem;
 
 fs::path freshTestDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("strata_test_lcm_" + name);
+  // The process id keeps two test runs on one machine (two build trees) out of each other's way.
+  const fs::path dir = fs::temp_directory_path() /
+                       ("strata_test_lcm_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;

@@ -1,6 +1,7 @@
 // strata-mapper under bad input: 10,000 random, truncated and invalid messages on its input
 // channels are counted per channel, never crash it and never change the map.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -113,7 +114,8 @@ std::string saveAndRead(InProcessMapper& mapper, apps::FramePublisher& publisher
 }
 
 TEST(LcmMapperFuzz, TenThousandBadMessagesAreCountedAndLeaveTheMapAlone) {
-  const fs::path dir = fs::temp_directory_path() / "strata_test_lcm_fuzz";
+  const fs::path dir =
+      fs::temp_directory_path() / ("strata_test_lcm_fuzz_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
   InProcessMapper mapper(testMapperOptions());

@@ -1,6 +1,7 @@
 // strata-mapper in-process over memq://: the same voxels as `strata fuse`, complete mesh updates,
 // backpressure that drops the oldest frames, commands, and change events when a session ends.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 
@@ -22,7 +23,8 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path freshDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("strata_test_lcm_" + name);
+  const fs::path dir = fs::temp_directory_path() /
+                       ("strata_test_lcm_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;

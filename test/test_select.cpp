@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "fusion_fixture.h"
 #include "kernels/raycast.h"
+#include "kernels/select_differences.h"
 #include "kernels/select_samples.h"
 #include "select/keyframe_scorer.h"
 #include "select/keyframe_selection.h"
@@ -68,6 +69,61 @@ TEST(SelectSamples, DeviceMatchesReferenceAndFullRaycast) {
   EXPECT_LE(depth_off, samples / 1000);
   EXPECT_LE(color_off, samples / 100);
   EXPECT_EQ(full_mismatch, 0u);
+}
+
+// sample_differences.comp against its reference on the same device samples, with a change put
+// into the keyframe: a red box 0.4 m nearer over the left tenth of the image; the rest unchanged.
+TEST(SelectDifferences, DeviceMatchesReferenceAndSeesTheChange) {
+  const auto owned = analyticMap();
+  AnalyticMap& m = *owned;
+  KeyframeScorer scorer(test::sharedContext());
+  const CameraIntrinsics k = m.dataset.intrinsics();
+  const SampleDifferenceOptions options = differenceOptions(scorer.config());
+  std::size_t compared = 0, color_off = 0, depth_off = 0, applies_off = 0;
+  for (int pose : {3, 11, 17}) {
+    RgbdFrame frame = m.dataset.load(pose);
+    ASSERT_FALSE(frame.color.empty());
+    for (int v = 0; v < k.height_px; ++v) {
+      for (int u = 0; u < k.width_px / 10; ++u) {
+        const std::size_t p = static_cast<std::size_t>(v) * k.width_px + u;
+        if (frame.depth.depth_m[p] > 0.0f) frame.depth.depth_m[p] -= 0.4f;
+        frame.color.rgb[p * 3] = 220, frame.color.rgb[p * 3 + 1] = 30, frame.color.rgb[p * 3 + 2] = 30;
+      }
+    }
+    SampleRaycast samples;
+    SampleDifferences device;
+    const KeyframeScore device_score =
+        scorer.score(m.fusion->map(), frame, k, nullptr, &samples, &device);
+    const SampleDifferences reference = sampleDifferencesReference(samples, frame, options);
+    const KeyframeScore reference_score = scoreSamples(samples, frame, scorer.config());
+    ASSERT_EQ(device.color.size(), reference.color.size());
+    double changed_depth = 0.0, unchanged_depth = 0.0;
+    int changed = 0, unchanged = 0;
+    for (std::size_t i = 0; i < device.color.size(); ++i) {
+      ++compared;
+      applies_off += (device.color[i] < 0.0f) != (reference.color[i] < 0.0f) ||
+                     (device.depth_m[i] < 0.0f) != (reference.depth_m[i] < 0.0f);
+      color_off += std::abs(device.color[i] - reference.color[i]) > 1e-5f;
+      depth_off += std::abs(device.depth_m[i] - reference.depth_m[i]) > 1e-5f;
+      if (reference.depth_m[i] < 0.0f) continue;
+      const int gx = static_cast<int>(i) % samples.grid.width;
+      // Ground truth: exact depth, so only the changed strip differs (0.4 m - 5 cm tolerance).
+      if (samples.grid.pixelU(gx) < k.width_px / 10) {
+        changed_depth += reference.depth_m[i], ++changed;
+      } else {
+        unchanged_depth += reference.depth_m[i], ++unchanged;
+      }
+    }
+    ASSERT_GT(changed, 0);
+    EXPECT_NEAR(changed_depth / changed, 0.35, 0.03) << "pose " << pose;
+    EXPECT_LT(unchanged_depth / unchanged, 0.005) << "pose " << pose;
+    EXPECT_NEAR(device_score.color_change, reference_score.color_change, 1e-5);
+    EXPECT_NEAR(device_score.depth_change_m, reference_score.depth_change_m, 1e-5);
+    EXPECT_GT(device_score.color_change, 0.01);
+  }
+  EXPECT_EQ(applies_off, 0u);
+  EXPECT_EQ(color_off, 0u) << "of " << compared << " samples";
+  EXPECT_EQ(depth_off, 0u) << "of " << compared << " samples";
 }
 
 TEST(SelectScorer, OwnFramesAreCoveredAndUnchanged) {

@@ -28,3 +28,16 @@ static_assert(sizeof(SampleRaycastPush) == 128 &&
 inline constexpr std::uint32_t kSampleHitBit = 0x80000000u;
 
 }  // namespace strata::gpu
+
+namespace strata::gpu {
+
+/// Push constants of shaders/sample_differences.comp.
+struct SampleDifferencePush {
+  std::uint32_t grid_size[2];
+  float depth_tolerance_m;
+  float max_depth_difference_m;
+  std::uint32_t has_color;
+};
+static_assert(sizeof(SampleDifferencePush) == 20, "SampleDifferencePush layout");
+
+}  // namespace strata::gpu

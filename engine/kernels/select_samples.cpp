@@ -6,6 +6,7 @@
 #include "kernels/device_layout.h"
 #include "kernels/device_tsdf_map.h"
 #include "kernels/select_layout.h"
+#include "kernels/timed_dispatch.h"
 
 namespace strata {
 
@@ -50,18 +51,10 @@ SampleRaycast SampleRaycastKernel::run(DeviceTsdfMap& map, const CameraIntrinsic
 
   vk::DescriptorSet set =
       vk::DescriptorSet::create(context_, pipeline_, {&map.hashEntries(), &samples_out_});
-  vk::CommandBuffer cmd = vk::CommandBuffer::create(context_);
-  cmd.begin();
-  cmd.resetQueries(timer_);
-  cmd.writeTimestamp(timer_, 0);
-  cmd.bind(pipeline_, set);
-  cmd.pushConstants(pipeline_, &push, sizeof(push));
-  cmd.dispatch((push.grid_size[0] + 15) / 16, (push.grid_size[1] + 15) / 16);
-  cmd.barrier();
-  cmd.writeTimestamp(timer_, 1);
-  cmd.end();
-  cmd.submitAndWait();
-  if (device_ms != nullptr) *device_ms = timer_.elapsedMs(0, 1);
+  const double ms = dispatchTimed(context_, pipeline_, set, &push, sizeof(push),
+                                  (push.grid_size[0] + 15) / 16, (push.grid_size[1] + 15) / 16,
+                                  timer_);
+  if (device_ms != nullptr) *device_ms = ms;
 
   // Explicit device->host copy of the samples (host-visible readback buffer).
   out.hit.assign(n, 0);

@@ -51,6 +51,8 @@ class SampleRaycastKernel {
   SampleRaycast run(DeviceTsdfMap& map, const CameraIntrinsics& intrinsics,
                     const Eigen::Isometry3d& T_W_C, int stride_px,
                     const RaycastOptions& options = {}, double* device_ms = nullptr);
+  /// The last run's samples on the device (uvec2 per sample), for sample_differences.comp.
+  const vk::Buffer& samplesBuffer() const { return samples_out_; }
 
  private:
   void ensureOutput(std::size_t sample_count);

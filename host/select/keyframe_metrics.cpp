@@ -46,46 +46,6 @@ SamplePairs gatherPairs(const SampleRaycast& r, const RgbdFrame& frame) {
   return p;
 }
 
-/// 3x3 binomial blur over the grid, averaging only samples inside `mask` (the rendered hits), so
-/// both images are blurred over the same support.
-std::vector<Rgb> blurMasked(const std::vector<Rgb>& image, const std::vector<std::uint8_t>& mask,
-                            const SampleGrid& g) {
-  static constexpr float kTap[3] = {1.0f, 2.0f, 1.0f};
-  std::vector<Rgb> out(image.size(), Rgb{0, 0, 0});
-  for (int y = 0; y < g.height; ++y) {
-    for (int x = 0; x < g.width; ++x) {
-      if (!mask[y * g.width + x]) continue;
-      Rgb sum{0, 0, 0};
-      float weight = 0.0f;
-      for (int dy = -1; dy <= 1; ++dy) {
-        for (int dx = -1; dx <= 1; ++dx) {
-          const int u = x + dx, v = y + dy;
-          if (u < 0 || v < 0 || u >= g.width || v >= g.height || !mask[v * g.width + u]) continue;
-          const float w = kTap[dx + 1] * kTap[dy + 1];
-          for (int c = 0; c < 3; ++c) sum[c] += w * image[v * g.width + u][c];
-          weight += w;
-        }
-      }
-      for (int c = 0; c < 3; ++c) out[y * g.width + x][c] = sum[c] / weight;
-    }
-  }
-  return out;
-}
-
-/// Per-sample chromaticity, 3 * rgb / (r + g + b): under the simulator's (and, roughly, real)
-/// Lambertian shading a change of light direction or intensity scales a pixel's three channels
-/// alike, which this removes. A global per-channel mean normalisation only removes a global
-/// change and left the office world's relit sessions "changed" everywhere.
-/// NOTE: a grey object in front of a grey wall has no chromatic contrast; the depth change
-/// metric covers that case.
-void normaliseColours(std::vector<Rgb>& image) {
-  constexpr float kMinSum = 30.0f;  // dark pixels: keep noise from exploding
-  for (auto& rgb : image) {
-    const float scale = 3.0f / std::max(rgb[0] + rgb[1] + rgb[2], kMinSum);
-    for (int c = 0; c < 3; ++c) rgb[c] *= scale;
-  }
-}
-
 /// Mean of the upper half of the values ("mean plus"): a change over a small part of the image
 /// still moves it, noise spread evenly moves it little.
 double upperHalfMean(std::vector<float> values) {
@@ -97,19 +57,13 @@ double upperHalfMean(std::vector<float> values) {
   return sum / static_cast<double>(values.size() - half);
 }
 
-double colorChange(const SamplePairs& p, const SampleRaycast& r) {
-  std::vector<Rgb> rendered = blurMasked(p.rendered, r.hit, r.grid);
-  std::vector<Rgb> observed = blurMasked(p.observed, r.hit, r.grid);
-  normaliseColours(rendered);
-  normaliseColours(observed);
-  std::vector<float> differences;
-  for (std::size_t i = 0; i < rendered.size(); ++i) {
-    if (!r.hit[i]) continue;
-    float d = 0.0f;
-    for (int c = 0; c < 3; ++c) d += std::abs(rendered[i][c] - observed[i][c]);
-    differences.push_back(d / 3.0f);
+/// Upper-half mean of the per-sample values that apply (>= 0).
+double upperHalfMeanOf(const std::vector<float>& per_sample) {
+  std::vector<float> values;
+  for (float v : per_sample) {
+    if (v >= 0.0f) values.push_back(v);
   }
-  return upperHalfMean(std::move(differences));
+  return upperHalfMean(std::move(values));
 }
 
 /// Share of the samples the map explains. With depth, only samples where the keyframe measured
@@ -129,18 +83,6 @@ double coverage(const SampleRaycast& r, const SamplePairs& p, int* hits) {
   }
   *hits = measured_hits;
   return static_cast<double>(measured_hits) / measured;
-}
-
-/// Per sample: the depth difference beyond the tolerance (noise and voxelisation count as no
-/// change), clipped so one far outlier cannot dominate.
-double depthChange(const SamplePairs& p, const SampleRaycast& r, const ScorerConfig& config) {
-  std::vector<float> differences;
-  for (std::size_t i = 0; i < r.hit.size(); ++i) {
-    if (!r.hit[i] || p.new_depth_m[i] <= 0.0f) continue;
-    const float beyond = std::abs(p.new_depth_m[i] - r.depth_m[i]) - config.depth_tolerance_m;
-    differences.push_back(std::clamp(beyond, 0.0f, config.max_depth_difference_m));
-  }
-  return upperHalfMean(std::move(differences));
 }
 
 float grey(const Rgb& rgb) { return (rgb[0] + rgb[1] + rgb[2]) / 3.0f; }
@@ -207,19 +149,37 @@ void ScorerConfig::validate() const {
   if (histogram_bins < 2) throw InputError("histogram_bins must be >= 2");
 }
 
+SampleDifferenceOptions differenceOptions(const ScorerConfig& config) {
+  SampleDifferenceOptions options;
+  options.depth_tolerance_m = config.depth_tolerance_m;
+  options.max_depth_difference_m = config.max_depth_difference_m;
+  return options;
+}
+
 KeyframeScore scoreSamples(const SampleRaycast& rendered, const RgbdFrame& frame,
                            const ScorerConfig& config) {
   checkSizes(rendered, frame);
+  return scoreSamples(rendered, frame, config,
+                      sampleDifferencesReference(rendered, frame, differenceOptions(config)));
+}
+
+KeyframeScore scoreSamples(const SampleRaycast& rendered, const RgbdFrame& frame,
+                           const ScorerConfig& config, const SampleDifferences& differences) {
+  checkSizes(rendered, frame);
+  const std::size_t n = static_cast<std::size_t>(rendered.grid.count());
+  if (differences.color.size() != n || differences.depth_m.size() != n) {
+    throw InputError("keyframe '" + frame.name + "': sample differences do not fit its grid");
+  }
   const SamplePairs pairs = gatherPairs(rendered, frame);
   KeyframeScore s;
   s.samples = rendered.grid.count();
   s.coverage = coverage(rendered, pairs, &s.hits);
-  s.depth_change_m = depthChange(pairs, rendered, config);
+  s.depth_change_m = upperHalfMeanOf(differences.depth_m);
   if (frame.color.empty()) {
     s.ncc = s.histogram = 1.0;  // nothing to compare: no evidence of change
     return s;
   }
-  s.color_change = colorChange(pairs, rendered);
+  s.color_change = upperHalfMeanOf(differences.color);
   s.ncc = nccSimilarity(pairs);
   s.histogram = histogramSimilarity(pairs, config.histogram_bins);
   return s;

@@ -27,18 +27,23 @@ KeyframeScore scoreKeyframeReference(const TsdfMap& map, const RgbdFrame& frame,
 }
 
 KeyframeScorer::KeyframeScorer(vk::Context& context, const ScorerConfig& config)
-    : config_(config), kernel_(context) {
+    : config_(config), kernel_(context), difference_kernel_(context) {
   config_.validate();
 }
 
 KeyframeScore KeyframeScorer::score(DeviceTsdfMap& map, const RgbdFrame& frame,
                                     const CameraIntrinsics& intrinsics, double* device_ms,
-                                    SampleRaycast* rendered) {
+                                    SampleRaycast* rendered, SampleDifferences* differences) {
   validateFrame(frame, intrinsics);
+  double raycast_ms = 0.0, difference_ms = 0.0;
   SampleRaycast samples = kernel_.run(map, intrinsics, frame.T_W_C, config_.sample_stride_px,
-                                      raycastOptions(config_), device_ms);
-  KeyframeScore score = scoreSamples(samples, frame, config_);
+                                      raycastOptions(config_), &raycast_ms);
+  SampleDifferences per_sample = difference_kernel_.run(
+      kernel_, samples.grid, frame, differenceOptions(config_), &difference_ms);
+  if (device_ms != nullptr) *device_ms = raycast_ms + difference_ms;
+  KeyframeScore score = scoreSamples(samples, frame, config_, per_sample);
   if (rendered != nullptr) *rendered = std::move(samples);
+  if (differences != nullptr) *differences = std::move(per_sample);
   return score;
 }
 

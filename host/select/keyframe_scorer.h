@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "core/types.h"
+#include "kernels/select_differences.h"
 #include "kernels/select_samples.h"
 #include "map/tsdf_map.h"
 #include "vk/vk.h"
@@ -63,6 +64,11 @@ struct KeyframeScore {
 /// by the device and reference paths so both decide alike from the same samples.
 KeyframeScore scoreSamples(const SampleRaycast& rendered, const RgbdFrame& frame,
                            const ScorerConfig& config);
+/// The same from per-sample differences already computed (on the device: KeyframeScorer).
+KeyframeScore scoreSamples(const SampleRaycast& rendered, const RgbdFrame& frame,
+                           const ScorerConfig& config, const SampleDifferences& differences);
+/// The per-sample difference settings of a scorer config.
+SampleDifferenceOptions differenceOptions(const ScorerConfig& config);
 
 /// Host reference: raycastSamplesReference + scoreSamples.
 KeyframeScore scoreKeyframeReference(const TsdfMap& map, const RgbdFrame& frame,
@@ -70,7 +76,9 @@ KeyframeScore scoreKeyframeReference(const TsdfMap& map, const RgbdFrame& frame,
                                      const ScorerConfig& config = {},
                                      SampleRaycast* rendered = nullptr);
 
-/// Scores keyframes against a device map (its TSDF layer 0): raycast_samples.comp + scoreSamples.
+/// Scores keyframes against a device map (its TSDF layer 0): raycast_samples.comp, then
+/// sample_differences.comp on the samples left on the device, then scoreSamples on the host
+/// (coverage counts, upper-half means, the baselines).
 class KeyframeScorer {
  public:
   /// `context` must outlive the scorer. Validates the config.
@@ -78,16 +86,18 @@ class KeyframeScorer {
 
   /// Scores `frame` (pose T_W_C, depth and colour of `intrinsics`' size; colour may be empty:
   /// colour metrics are then 0) against `map`. Bad input throws InputError. `device_ms` (optional)
-  /// receives the raycast's device time; `rendered` (optional) the samples.
+  /// receives the device time of both kernels; `rendered` (optional) the samples, `differences`
+  /// (optional) the device's per-sample differences.
   KeyframeScore score(DeviceTsdfMap& map, const RgbdFrame& frame,
                       const CameraIntrinsics& intrinsics, double* device_ms = nullptr,
-                      SampleRaycast* rendered = nullptr);
+                      SampleRaycast* rendered = nullptr, SampleDifferences* differences = nullptr);
 
   const ScorerConfig& config() const { return config_; }
 
  private:
   ScorerConfig config_;
   SampleRaycastKernel kernel_;
+  SampleDifferenceKernel difference_kernel_;
 };
 
 }  // namespace strata::selection
