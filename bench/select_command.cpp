@@ -134,9 +134,9 @@ int runChecked(const SelectBenchOptions& o) {
           .set("scored", "session 1, " + std::to_string(frames.size()) + " keyframes at 640x480")
           .set("notes",
                Json::array()
-                   .push("device time: timestamp queries around raycast_samples.comp "
-                         "(one dispatch per keyframe); wall time adds the readback and the "
-                         "host metrics (blur, colour normalisation, baselines)")
+                   .push("device time: timestamp queries around raycast_samples.comp and "
+                         "sample_differences.comp (one dispatch each per keyframe); wall time "
+                         "adds uploads, readbacks and the host's upper-half means and baselines")
                    .push("on lavapipe the device is this CPU (LP_NUM_THREADS threads); "
                          "timings are noisy when other work shares the cores"));
   Json report = Json::object()
