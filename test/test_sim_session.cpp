@@ -1,5 +1,6 @@
 // Simulated sessions as datasets, `strata sim` output, and the multi-session demo.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -71,7 +72,8 @@ TEST(SimSession, FramesAreValidAndDriftOnlyTouchesTheGivenPoses) {
 }
 
 TEST(SimCommand, WritesReadableTumSessionsWithGroundTruthAndImu) {
-  const fs::path out = fs::temp_directory_path() / "strata_sim_command_test";
+  const fs::path out =
+      fs::temp_directory_path() / ("strata_sim_command_test_" + std::to_string(::getpid()));
   fs::remove_all(out);
   apps::SimOptions options;
   options.sessions = 2;
@@ -96,11 +98,13 @@ TEST(SimCommand, WritesReadableTumSessionsWithGroundTruthAndImu) {
 }
 
 TEST(SimCommand, MalformedWorldFileFailsWithItsLine) {
-  const fs::path path = fs::temp_directory_path() / "strata_bad_world.yaml";
+  const fs::path path =
+      fs::temp_directory_path() / ("strata_bad_world_" + std::to_string(::getpid()) + ".yaml");
   std::ofstream(path) << "name: bad\nseed: 1\nrooms:\n  - {name: r, min: [0, 0], max: [4]}\n";
   apps::SimOptions options;
   options.world = path.string();
-  options.out_dir = (fs::temp_directory_path() / "strata_bad_world_out").string();
+  options.out_dir =
+      (fs::temp_directory_path() / ("strata_bad_world_out_" + std::to_string(::getpid()))).string();
   options.quiet = true;
   testing::internal::CaptureStderr();
   EXPECT_EQ(apps::runSim(options), 2);
@@ -110,7 +114,8 @@ TEST(SimCommand, MalformedWorldFileFailsWithItsLine) {
 }
 
 TEST(Demo, RunsTwoSessionsAndWritesTheReport) {
-  const fs::path out = fs::temp_directory_path() / "strata_demo_test";
+  const fs::path out =
+      fs::temp_directory_path() / ("strata_demo_test_" + std::to_string(::getpid()));
   fs::remove_all(out);
   apps::DemoOptions options;
   options.sessions = 2;

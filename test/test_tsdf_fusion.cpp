@@ -1,6 +1,7 @@
 // Block allocation + TSDF integration: device against the C++ reference, both against the exact
 // scene, on the analytic scene and on the real redkitchen sample.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -190,7 +191,8 @@ void writeSevenScenes(const std::string& dir, const Dataset& dataset, std::size_
 TEST(TsdfIntegration, TumAndSevenScenesReadersGiveTheSameMap) {
   // The same frames written in both layouts (millimetre depth in both) fuse to the same map.
   const auto source = analyticDataset(6);
-  const std::string root = std::filesystem::temp_directory_path() / "strata_readers_same_map";
+  const std::string root = std::filesystem::temp_directory_path() /
+                           ("strata_readers_same_map_" + std::to_string(::getpid()));
   std::filesystem::remove_all(root);
   std::vector<RgbdFrame> frames;
   for (std::size_t i = 0; i < source.size(); ++i) {

@@ -1,5 +1,6 @@
 // Synthetic multi-session worlds: world files, seeded layouts, meshes, Embree scene ground truth.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -35,7 +36,8 @@ std::string readText(const std::string& path) {
 }
 
 fs::path freshDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("strata_test_world_" + name);
+  const fs::path dir =
+      fs::temp_directory_path() / ("strata_test_world_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
