@@ -6,6 +6,8 @@
 #include <fstream>
 
 #include "apps/select_command.h"
+#include "apps/select_plot.h"
+#include "apps/select_outputs.h"
 #include "fusion_fixture.h"
 #include "io/tum_writer.h"
 #include "map/map_file.h"
@@ -99,6 +101,62 @@ TEST_F(SelectCliTest, BadInputExitsNonZeroNamingTheProblem) {
   o.stride_px = 0;
   EXPECT_EQ(select(o), 2);
   EXPECT_NE(stderr_.find("stride"), std::string::npos) << stderr_;
+}
+
+// With the simulator's truth (strata demo --incremental), the CSV gains the true pixel shares and
+// decision, and the plot a strip of truly positive keyframes under the selected ones.
+TEST_F(SelectCliTest, TruthColumnsAndStrip) {
+  constexpr std::size_t kKeyframes = 6;
+  std::vector<selection::KeyframeScore> scores(kKeyframes);
+  for (auto& k : scores) k.coverage = 1.0, k.ncc = k.histogram = 1.0;
+  scores[2].coverage = 0.2;  // one keyframe looks into unmapped space
+  selection::SelectionConfig config;
+  config.smoothing_window = 1;
+  config.dilation = 0;
+  const selection::TrajectorySelection s = selection::selectKeyframes(scores, config);
+  ASSERT_EQ(s.selectedCount(), 1u);
+  std::vector<apps::ScoredKeyframe> keyframes(kKeyframes);
+  std::vector<selection::KeyframeTruth> truth(kKeyframes);
+  for (std::size_t i = 0; i < kKeyframes; ++i) {
+    keyframes[i].name = "k" + std::to_string(i);
+    keyframes[i].score = scores[i];
+    truth[i].valid_pixels = 100;
+  }
+  truth[2].unmapped_pixels = truth[2].positive_pixels = 80, truth[2].positive = true;
+  truth[4].changed_pixels = truth[4].positive_pixels = 5, truth[4].positive = true;  // missed
+
+  const fs::path csv = dir_ / "truth.csv";
+  apps::writeSelectionCsv(csv.string(), keyframes, s, truth);
+  std::ifstream in(csv);
+  std::string header, line;
+  std::getline(in, header);
+  EXPECT_NE(header.find(",true_changed_fraction,true_unmapped_fraction,true_positive"),
+            std::string::npos)
+      << header;
+  std::vector<std::string> rows;
+  while (std::getline(in, line)) rows.push_back(line);
+  ASSERT_EQ(rows.size(), kKeyframes);
+  // ... triggered, selected, then the truth: selected and positive; missed and positive.
+  EXPECT_EQ(rows[2].substr(rows[2].size() - 22), ",1,1,0.00000,0.80000,1") << rows[2];
+  EXPECT_EQ(rows[4].substr(rows[4].size() - 22), ",0,0,0.05000,0.00000,1") << rows[4];
+  EXPECT_EQ(rows[0].back(), '0');
+  truth.pop_back();
+  EXPECT_THROW(apps::writeSelectionCsv(csv.string(), keyframes, s, truth), std::invalid_argument);
+
+  std::vector<std::uint8_t> flags(kKeyframes, 0);
+  flags[2] = flags[4] = 1;
+  const ColorImage plain = apps::renderSelectionPlot(s, config);
+  const ColorImage with_truth = apps::renderSelectionPlot(s, config, flags);
+  EXPECT_GT(with_truth.height_px, plain.height_px);
+  const auto count = [](const ColorImage& im, std::uint8_t r, std::uint8_t g, std::uint8_t b) {
+    std::size_t n = 0;
+    for (std::size_t p = 0; p + 2 < im.rgb.size(); p += 3) {
+      n += im.rgb[p] == r && im.rgb[p + 1] == g && im.rgb[p + 2] == b;
+    }
+    return n;
+  };
+  EXPECT_EQ(count(plain, 70, 70, 190), 0u);
+  EXPECT_GT(count(with_truth, 70, 70, 190), 0u);  // the two positive keyframes' cells
 }
 
 }  // namespace
