@@ -47,9 +47,9 @@ TEST(MapHistory, LatestSessionThatSawThePlaceWins) {
   const std::vector<float> d = history.lastObservedDistance(
       {downAt(0.05f, 0.05f), downAt(1.05f, 0.05f), downAt(5.05f, 0.05f)});
   ASSERT_EQ(d.size(), 3u);
-  EXPECT_FLOAT_EQ(d[0], 3.0f);   // session 1 never looked at x = 0: the map holds session 0's floor
-  EXPECT_FLOAT_EQ(d[1], 2.5f);   // session 1 saw the platform
-  EXPECT_LT(d[2], 0.0f);         // nobody saw x = 5
+  EXPECT_FLOAT_EQ(d[0], 3.0f);  // session 1 never looked at x = 0: the map holds session 0's floor
+  EXPECT_FLOAT_EQ(d[1], 2.5f);  // session 1 saw the platform
+  EXPECT_LT(d[2], 0.0f);        // nobody saw x = 5
 }
 
 TEST(MapHistory, EmptyHistoryAndBadInput) {

@@ -6,8 +6,8 @@
 #include <fstream>
 
 #include "apps/select_command.h"
-#include "apps/select_plot.h"
 #include "apps/select_outputs.h"
+#include "apps/select_plot.h"
 #include "fusion_fixture.h"
 #include "io/tum_writer.h"
 #include "map/map_file.h"

@@ -1,7 +1,8 @@
 // Device dispatch of shaders/sample_differences.comp.
+#include "kernels/select_differences.h"
+
 #include <cstring>
 
-#include "kernels/select_differences.h"
 #include "kernels/select_layout.h"
 #include "kernels/timed_dispatch.h"
 
@@ -17,8 +18,8 @@ void SampleDifferenceKernel::ensureCapacity(std::size_t sample_count) {
   if (sample_count <= capacity_) return;
   keyframe_in_ = vk::Buffer::create(context_, sample_count * 8, vk::MemoryUsage::kHostUpload,
                                     "keyframe at samples");
-  differences_out_ = vk::Buffer::create(context_, sample_count * 8,
-                                        vk::MemoryUsage::kHostReadback, "sample differences");
+  differences_out_ = vk::Buffer::create(context_, sample_count * 8, vk::MemoryUsage::kHostReadback,
+                                        "sample differences");
   capacity_ = sample_count;
 }
 
@@ -47,9 +48,9 @@ SampleDifferences SampleDifferenceKernel::run(const SampleRaycastKernel& raycast
 
   vk::DescriptorSet set = vk::DescriptorSet::create(
       context_, pipeline_, {&raycast.samplesBuffer(), &keyframe_in_, &differences_out_});
-  const double ms = dispatchTimed(context_, pipeline_, set, &push, sizeof(push),
-                                  (push.grid_size[0] + 15) / 16, (push.grid_size[1] + 15) / 16,
-                                  timer_);
+  const double ms =
+      dispatchTimed(context_, pipeline_, set, &push, sizeof(push), (push.grid_size[0] + 15) / 16,
+                    (push.grid_size[1] + 15) / 16, timer_);
   if (device_ms != nullptr) *device_ms = ms;
 
   SampleDifferences out;

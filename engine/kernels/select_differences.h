@@ -54,7 +54,7 @@ class SampleDifferenceKernel {
 
 /// The keyframe's depth (metres; 0 where invalid) and colour (r | g << 8 | b << 16; 0 without
 /// colour) at the grid's pixels: what sample_differences.comp reads per sample.
-void keyframeAtSamples(const SampleGrid& grid, const RgbdFrame& frame,
-                       std::vector<float>& depth_m, std::vector<std::uint32_t>& color_rgb);
+void keyframeAtSamples(const SampleGrid& grid, const RgbdFrame& frame, std::vector<float>& depth_m,
+                       std::vector<std::uint32_t>& color_rgb);
 
 }  // namespace strata

@@ -46,8 +46,8 @@ float colorDifference(const SampleRaycast& r, const std::vector<std::uint32_t>& 
 
 }  // namespace
 
-void keyframeAtSamples(const SampleGrid& grid, const RgbdFrame& frame,
-                       std::vector<float>& depth_m, std::vector<std::uint32_t>& color_rgb) {
+void keyframeAtSamples(const SampleGrid& grid, const RgbdFrame& frame, std::vector<float>& depth_m,
+                       std::vector<std::uint32_t>& color_rgb) {
   depth_m.assign(grid.count(), 0.0f);
   color_rgb.assign(grid.count(), 0u);
   for (int gy = 0; gy < grid.height; ++gy) {

@@ -6,12 +6,11 @@
 // fused keyframes never looked at its old place, the map still holds the object there, and a
 // later keyframe looking at that place sees change the previous session's world cannot explain.
 // Thread safety: const methods are thread safe; addSession is not.
+#include <Eigen/Core>
 #include <cstdint>
 #include <memory>
 #include <unordered_set>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "sim/ray_scene.h"
 
