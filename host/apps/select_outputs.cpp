@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <stdexcept>
 #include <filesystem>
+#include <stdexcept>
 
 #include "apps/select_plot.h"
 #include "core/atomic_file.h"

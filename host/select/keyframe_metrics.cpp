@@ -26,23 +26,13 @@ Rgb unpack(std::uint32_t rgba) {
 }
 
 SamplePairs gatherPairs(const SampleRaycast& r, const RgbdFrame& frame) {
-  const SampleGrid& g = r.grid;
+  std::vector<std::uint32_t> observed_rgb;
   SamplePairs p;
-  p.rendered.resize(g.count());
-  p.observed.assign(g.count(), Rgb{0, 0, 0});
-  p.new_depth_m.assign(g.count(), 0.0f);
-  for (int gy = 0; gy < g.height; ++gy) {
-    for (int gx = 0; gx < g.width; ++gx) {
-      const int i = gy * g.width + gx;
-      const std::size_t pixel = static_cast<std::size_t>(g.pixelV(gy)) * frame.depth.width_px +
-                                static_cast<std::size_t>(g.pixelU(gx));
-      p.rendered[i] = unpack(r.color_rgba[i]);
-      const float d = frame.depth.depth_m[pixel];
-      p.new_depth_m[i] = std::isfinite(d) && d > 0.0f ? d : 0.0f;
-      if (frame.color.empty()) continue;
-      for (int c = 0; c < 3; ++c) p.observed[i][c] = frame.color.rgb[pixel * 3 + c];
-    }
-  }
+  keyframeAtSamples(r.grid, frame, p.new_depth_m, observed_rgb);
+  p.rendered.resize(r.color_rgba.size());
+  p.observed.resize(observed_rgb.size());
+  for (std::size_t i = 0; i < p.rendered.size(); ++i) p.rendered[i] = unpack(r.color_rgba[i]);
+  for (std::size_t i = 0; i < p.observed.size(); ++i) p.observed[i] = unpack(observed_rgb[i]);
   return p;
 }
 

@@ -1,8 +1,7 @@
 #include "select/map_history.h"
 
-#include <cmath>
-
 #include "core/error.h"
+#include "map/block_index.h"
 
 namespace strata::selection {
 
@@ -11,15 +10,8 @@ MapHistory::MapHistory(float cell_m) : cell_m_(cell_m) {
 }
 
 std::uint64_t MapHistory::cellKey(const Eigen::Vector3f& p_W) const {
-  // 21 bits per axis (±1 M cells, ±100 km at 10 cm): plenty for a mapped place.
-  constexpr std::int64_t kOffset = 1 << 20;
-  constexpr std::uint64_t kMask = (1u << 21) - 1;
-  std::uint64_t key = 0;
-  for (int a = 0; a < 3; ++a) {
-    const auto cell = static_cast<std::int64_t>(std::floor(p_W[a] / cell_m_)) + kOffset;
-    key = (key << 21) | (static_cast<std::uint64_t>(cell) & kMask);
-  }
-  return key;
+  // The block index's key: 21 bits per axis, ±1 M cells (±100 km at 10 cm).
+  return packBlockKey((p_W / cell_m_).array().floor().cast<int>().matrix());
 }
 
 void MapHistory::addSession(std::unique_ptr<sim::RayScene> scene,

@@ -46,20 +46,20 @@ void SelectionLoop::recordTruth(const sim::SimSessionDataset& session, std::size
   const Eigen::Isometry3d& T_W_C = session.truePoses()[index];
   session_surface_W_.emplace_back();
   collectSurface(frame, T_W_C, session.intrinsics(), session_surface_W_.back());
-  seen_points_W_.insert(seen_points_W_.end(), session_surface_W_.back().begin(),
-                        session_surface_W_.back().end());
   if (run.session == 0) return;
   run.truth.push_back(keyframeTruth(frame, T_W_C, session.intrinsics(),
-                                    session.world().session(run.session).changedIds(),
-                                    history_, map, config_.truth));
+                                    session.world().session(run.session).changedIds(), history_,
+                                    map, config_.truth));
 }
 
 void SelectionLoop::recordHistory(const sim::SimSessionDataset& session, const SessionRun& run) {
   std::vector<Eigen::Vector3f> fused_surface_W;
   for (std::size_t i = 0; i < session_surface_W_.size(); ++i) {
-    if (!run.fused.at(i)) continue;
-    fused_surface_W.insert(fused_surface_W.end(), session_surface_W_[i].begin(),
-                           session_surface_W_[i].end());
+    const std::vector<Eigen::Vector3f>& surface_W = session_surface_W_[i];
+    seen_points_W_.insert(seen_points_W_.end(), surface_W.begin(), surface_W.end());
+    if (run.fused.at(i)) {
+      fused_surface_W.insert(fused_surface_W.end(), surface_W.begin(), surface_W.end());
+    }
   }
   history_.addSession(session.world().buildScene(run.session), fused_surface_W);
   session_surface_W_.clear();

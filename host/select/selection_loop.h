@@ -83,7 +83,8 @@ class SelectionLoop {
   Thresholds thresholds_;
   Thresholds reference_thresholds_;
   std::vector<SessionRun> sessions_;
-  std::vector<Eigen::Vector3f> seen_points_W_;  // true surface points of every keyframe
+  // True surface points of every keyframe of the finished sessions (recordHistory adds them).
+  std::vector<Eigen::Vector3f> seen_points_W_;
   // This session's keyframes' true surface points, until their fusion is decided.
   std::vector<std::vector<Eigen::Vector3f>> session_surface_W_;
   MapHistory history_;  // the worlds and fused views the map was built from
