@@ -87,7 +87,8 @@ TEST(SelectDifferences, DeviceMatchesReferenceAndSeesTheChange) {
       for (int u = 0; u < k.width_px / 10; ++u) {
         const std::size_t p = static_cast<std::size_t>(v) * k.width_px + u;
         if (frame.depth.depth_m[p] > 0.0f) frame.depth.depth_m[p] -= 0.4f;
-        frame.color.rgb[p * 3] = 220, frame.color.rgb[p * 3 + 1] = 30, frame.color.rgb[p * 3 + 2] = 30;
+        frame.color.rgb[p * 3] = 220, frame.color.rgb[p * 3 + 1] = 30,
+                            frame.color.rgb[p * 3 + 2] = 30;
       }
     }
     SampleRaycast samples;
@@ -126,6 +127,59 @@ TEST(SelectDifferences, DeviceMatchesReferenceAndSeesTheChange) {
   EXPECT_EQ(depth_off, 0u) << "of " << compared << " samples";
 }
 
+// The surface check of raycast_samples.comp against its reference, and both against the change
+// put into the frame: the left tenth of the image 0.4 m nearer (off the map's surface by far more
+// than the 2-voxel tolerance), the rest the exact depth of the fused scene (held).
+TEST(SelectSamples, SurfaceCheckMatchesReferenceAndSeesTheChange) {
+  const auto owned = analyticMap();
+  AnalyticMap& m = *owned;
+  SampleRaycastKernel kernel(test::sharedContext());
+  const CameraIntrinsics k = m.dataset.intrinsics();
+  const ScorerConfig config;
+  std::size_t compared = 0, mismatched = 0;
+  for (int pose : {3, 11, 17}) {
+    RgbdFrame frame = m.dataset.load(pose);
+    for (int v = 0; v < k.height_px; ++v) {
+      for (int u = 0; u < k.width_px / 10; ++u) {
+        float& d = frame.depth.depth_m[static_cast<std::size_t>(v) * k.width_px + u];
+        if (d > 0.0f) d -= 0.4f;
+      }
+    }
+    const SampleGrid grid = SampleGrid::of(k, 10);
+    const MeasuredSamples measured =
+        measuredSamples(grid, frame, config, m.map.config().voxel_size_m);
+    const SampleRaycast device =
+        kernel.run(m.fusion->map(), k, frame.T_W_C, 10, {}, nullptr, &measured);
+    const SampleRaycast reference =
+        raycastSamplesReference(m.map, k, frame.T_W_C, 10, {}, &measured);
+    int changed = 0, changed_not_held = 0, unchanged = 0, unchanged_not_held = 0;
+    for (int i = 0; i < grid.count(); ++i) {
+      ++compared;
+      mismatched += device.surface[i] != reference.surface[i];
+      if (reference.surface[i] == SurfaceCheck::kNoMeasurement) continue;
+      const bool not_held = reference.surface[i] == SurfaceCheck::kNotHeld;
+      if (grid.pixelU(i % grid.width) < k.width_px / 10) {
+        ++changed, changed_not_held += not_held;
+      } else {
+        ++unchanged, unchanged_not_held += not_held;
+      }
+    }
+    ASSERT_GT(changed, 0);
+    EXPECT_GE(changed_not_held, changed * 95 / 100) << "pose " << pose;
+    EXPECT_LE(unchanged_not_held, unchanged / 50) << "pose " << pose;
+  }
+  EXPECT_LE(mismatched, compared / 1000) << "surface checks must agree on >= 99.9 % of samples";
+  // Without measured depth nothing is checked.
+  const SampleRaycast none = kernel.run(m.fusion->map(), k, m.dataset.poses()[3], 10);
+  for (SurfaceCheck c : none.surface) ASSERT_EQ(c, SurfaceCheck::kNoMeasurement);
+  MeasuredSamples wrong_size;
+  wrong_size.depth_m.assign(5, 1.0f);
+  EXPECT_THROW(kernel.run(m.fusion->map(), k, m.dataset.poses()[3], 10, {}, nullptr, &wrong_size),
+               InputError);
+  EXPECT_THROW(raycastSamplesReference(m.map, k, m.dataset.poses()[3], 10, {}, &wrong_size),
+               InputError);
+}
+
 TEST(SelectScorer, OwnFramesAreCoveredAndUnchanged) {
   const auto owned = analyticMap();
   AnalyticMap& m = *owned;
@@ -135,10 +189,12 @@ TEST(SelectScorer, OwnFramesAreCoveredAndUnchanged) {
   const KeyframeScore reference = scoreKeyframeReference(m.map, frame, m.dataset.intrinsics());
   EXPECT_GT(device.coverage, 0.95);
   EXPECT_LT(device.depth_change_m, 0.02);
+  EXPECT_LT(device.surface_change, 0.02);
   EXPECT_GT(device.ncc, 0.8);
   EXPECT_NEAR(device.coverage, reference.coverage, 1e-3);
   EXPECT_NEAR(device.color_change, reference.color_change, 1e-2);
   EXPECT_NEAR(device.depth_change_m, reference.depth_change_m, 1e-3);
+  EXPECT_NEAR(device.surface_change, reference.surface_change, 1e-3);
 }
 
 /// Samples that all hit at 2 m with a grey-blue colour, and a frame seeing the same.
@@ -223,6 +279,10 @@ TEST(SelectSelection, SmoothsThresholdsAndDilates) {
   EXPECT_EQ(selectKeyframes(scores, config).selectedCount(), 1u);
   scores[3].coverage = 0.2;
   EXPECT_EQ(selectKeyframes(scores, config).selectedCount(), 2u);
+  scores[17].surface_change = 0.05;  // 5 % of its measured samples off the map's surface
+  EXPECT_EQ(selectKeyframes(scores, config).selectedCount(), 3u);
+  config.thresholds.surface_change = -1.0;  // unused
+  EXPECT_EQ(selectKeyframes(scores, config).selectedCount(), 2u);
   config.method = Method::kNcc;
   scores[15].ncc = -0.5;
   EXPECT_EQ(selectKeyframes(scores, config).selectedCount(), 1u);
@@ -236,6 +296,10 @@ TEST(SelectSelection, AutoThresholdsAreTheFirstSessionExtremes) {
     first[i].coverage = 0.97;
     first[i].ncc = 0.9;
   }
+  std::vector<KeyframeScore> thin_parts_lost = first;
+  thin_parts_lost[4].surface_change = 0.09;
+  EXPECT_NEAR(autoThresholds(thin_parts_lost, 1).surface_change, Thresholds{}.surface_change, 1e-12)
+      << "kept, not estimated";
   const Thresholds t = autoThresholds(first, 1);
   EXPECT_NEAR(t.color_change, 0.18, 1e-9);
   EXPECT_NEAR(t.depth_change_m, 0.01, 1e-9);

@@ -63,7 +63,10 @@ class SelectCliTest : public ::testing::Test {
 
 TEST_F(SelectCliTest, WritesCsvPlotAndContactSheet) {
   apps::SelectOptions o = goodOptions();
-  o.calibrate_dir = o.session_dir;  // the session against its own map: nothing is new
+  // The session against its own extremes: the calibrated metrics select nothing. The surface
+  // threshold is not calibrated (a share of the image): off here, checked below.
+  o.calibrate_dir = o.session_dir;
+  o.surface_threshold = -1.0;
   ASSERT_EQ(select(o), 0) << stderr_;
   EXPECT_NE(stdout_.find("0 of 8 keyframes"), std::string::npos) << stdout_;
   for (const char* file : {"keyframes.csv", "selection.png", "selected.png"}) {
@@ -73,6 +76,17 @@ TEST_F(SelectCliTest, WritesCsvPlotAndContactSheet) {
   int lines = 0;
   for (std::string line; std::getline(csv, line);) ++lines;
   EXPECT_EQ(lines, 1 + 8);
+  // The last keyframe (source frame 15) looks past the map fused from frames 0-14: 6 % of its
+  // measured samples fall where the map holds no surface, above the 2 % default: smoothed, it
+  // lifts keyframes 5-7 over it, dilation adds 4; keyframes 0-3 stay near 1.2 %.
+  o.surface_threshold = apps::SelectOptions{}.surface_threshold;
+  ASSERT_EQ(select(o), 0) << stderr_;
+  std::ifstream with_surface(dir_ / "out" / "keyframes.csv");
+  std::vector<std::string> rows;
+  for (std::string line; std::getline(with_surface, line);) rows.push_back(line);
+  ASSERT_EQ(rows.size(), 1u + 8u);
+  EXPECT_EQ(rows[8].substr(rows[8].size() - 4), ",1,1") << rows[8];
+  EXPECT_EQ(rows[1].substr(rows[1].size() - 4), ",0,0") << rows[1];
   // Coverage demanded beyond what the frames show selects them all.
   o.calibrate_dir.clear();
   o.coverage_threshold = 1.01;

@@ -29,17 +29,6 @@ std::vector<std::shared_ptr<sim::SimSessionDataset>> roomSessions() {
   return out;
 }
 
-LoopConfig roomConfig(bool incremental) {
-  LoopConfig config;
-  config.map.voxel_size_m = 0.05f;
-  config.map.weight_mode = WeightMode::kConstant;  // weights count frames
-  config.map.allocate_free_space = true;           // later sessions carve removed objects
-  config.incremental = incremental;
-  config.with_truth = true;
-  config.with_reference = !incremental;
-  return config;
-}
-
 void checkMethods(const SelectionLoop& complete) {
   const std::vector<MethodResult> results = evaluateMethods(complete);
   const Thresholds& t = complete.thresholds();
@@ -66,10 +55,12 @@ void checkMethods(const SelectionLoop& complete) {
 void checkDeviceAgainstReference(const SelectionLoop& complete) {
   const DeviceReferenceAgreement a = deviceReferenceAgreement(complete);
   std::printf(
-      "device vs reference: hit masks agree on %.4f %% of %zu samples; %zu of %zu x 3 "
-      "decisions differ\n",
-      100.0 * a.hitAgreement(), a.samples, a.decision_mismatches, a.keyframes);
+      "device vs reference: hit masks agree on %.4f %% of %zu samples, surface checks on "
+      "%.4f %%; %zu of %zu x 3 decisions differ\n",
+      100.0 * a.hitAgreement(), a.samples, 100.0 * a.surfaceAgreement(), a.decision_mismatches,
+      a.keyframes);
   EXPECT_GE(a.hitAgreement(), 0.999);
+  EXPECT_GE(a.surfaceAgreement(), 0.999);
   EXPECT_EQ(a.decision_mismatches, 0u);
 }
 
@@ -82,8 +73,8 @@ ImageUse printImageUse(const SelectionLoop& incremental) {
 }
 
 TEST(SelectRoom, BeatsBaselinesAgreesWithReferenceAndKeepsCoverage) {
-  SelectionLoop complete(test::sharedContext(), roomConfig(false));
-  SelectionLoop incremental(test::sharedContext(), roomConfig(true));
+  SelectionLoop complete(test::sharedContext(), demoLoopConfig(false));
+  SelectionLoop incremental(test::sharedContext(), demoLoopConfig(true));
   for (const auto& session : roomSessions()) {
     complete.addSession(*session);
     incremental.addSession(*session);

@@ -26,6 +26,10 @@ static_assert(sizeof(SampleRaycastPush) == 128 &&
 
 /// Bit 31 of a sample's colour word: the ray hit the map.
 inline constexpr std::uint32_t kSampleHitBit = 0x80000000u;
+/// Bit 30: the keyframe measured depth at the sample (the surface check ran).
+inline constexpr std::uint32_t kSampleMeasuredBit = 0x40000000u;
+/// Bit 29: the map holds the measured point (|interpolated TSDF| <= tolerance).
+inline constexpr std::uint32_t kSampleHeldBit = 0x20000000u;
 
 }  // namespace strata::gpu
 

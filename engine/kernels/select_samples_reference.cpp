@@ -8,6 +8,26 @@
 #include "kernels/tsdf_sampling.h"
 
 namespace strata {
+namespace {
+
+/// The shader's surface check: the map's TSDF at the measured point on the sample's ray (unit
+/// direction dir_W; camera z 1 lies at ray_scale along it), in the shader's order of operations.
+SurfaceCheck surfaceCheck(const TsdfMap& map, const Eigen::Vector3f& origin_W,
+                          const Eigen::Vector3f& dir_W, float ray_scale, float measured_m,
+                          float tolerance_m, float min_weight) {
+  const MapConfig& config = map.config();
+  // Only depths the map fuses count: beyond its range a surface can never be held.
+  if (!(std::isfinite(measured_m) && measured_m > 0.0f && measured_m >= config.min_depth_m &&
+        measured_m <= config.max_depth_m)) {
+    return SurfaceCheck::kNoMeasurement;
+  }
+  float tsdf_m = 0.0f;
+  const Eigen::Vector3f p_W = origin_W + dir_W * (measured_m * ray_scale);
+  const bool held = sampleTsdf(map, p_W, min_weight, &tsdf_m) && std::abs(tsdf_m) <= tolerance_m;
+  return held ? SurfaceCheck::kHeld : SurfaceCheck::kNotHeld;
+}
+
+}  // namespace
 
 SampleGrid SampleGrid::of(const CameraIntrinsics& intrinsics, int stride_px) {
   intrinsics.validate();
@@ -25,7 +45,8 @@ SampleGrid SampleGrid::of(const CameraIntrinsics& intrinsics, int stride_px) {
 
 SampleRaycast raycastSamplesReference(const TsdfMap& map, const CameraIntrinsics& intrinsics,
                                       const Eigen::Isometry3d& T_W_C, int stride_px,
-                                      const RaycastOptions& options) {
+                                      const RaycastOptions& options,
+                                      const MeasuredSamples* measured) {
   validatePose(T_W_C, "sample raycast camera");
   SampleRaycast out;
   out.grid = SampleGrid::of(intrinsics, stride_px);
@@ -33,6 +54,14 @@ SampleRaycast raycastSamplesReference(const TsdfMap& map, const CameraIntrinsics
   out.hit.assign(n, 0);
   out.depth_m.assign(n, 0.0f);
   out.color_rgba.assign(n, 0);
+  out.surface.assign(n, SurfaceCheck::kNoMeasurement);
+  if (measured != nullptr && measured->depth_m.size() != n) {
+    throw InputError("surface check: " + std::to_string(measured->depth_m.size()) +
+                     " measured depths for " + std::to_string(n) + " samples");
+  }
+  if (measured != nullptr && !(measured->held_tolerance_m >= 0.0f)) {
+    throw InputError("surface check: held tolerance must be >= 0");
+  }
   const MapConfig& config = map.config();
   const FrameCamera camera = FrameCamera::from(intrinsics, T_W_C);
   const Eigen::Matrix3f R_W_C = camera.T_W_C.topLeftCorner<3, 3>();
@@ -43,12 +72,16 @@ SampleRaycast raycastSamplesReference(const TsdfMap& map, const CameraIntrinsics
                                              static_cast<float>(out.grid.pixelV(gy)), camera.K);
       const float ray_scale = ray_C.norm();
       const Eigen::Vector3f dir_W = R_W_C * (ray_C / ray_scale);
+      const std::size_t i = static_cast<std::size_t>(gy) * out.grid.width + gx;
+      if (measured != nullptr) {
+        out.surface[i] = surfaceCheck(map, origin_W, dir_W, ray_scale, measured->depth_m[i],
+                                      measured->held_tolerance_m, options.min_weight);
+      }
       float t_hit = 0.0f;
       if (!raycastRayReference(map, origin_W, dir_W, config.min_depth_m * ray_scale,
                                config.max_depth_m * ray_scale, options, &t_hit)) {
         continue;
       }
-      const std::size_t i = static_cast<std::size_t>(gy) * out.grid.width + gx;
       out.hit[i] = 1;
       out.depth_m[i] = t_hit / ray_scale;
       const Eigen::Vector3f p_W = origin_W + dir_W * t_hit;

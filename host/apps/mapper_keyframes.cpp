@@ -29,6 +29,9 @@ keyframe_score_t MapperKeyframes::score(DeviceTsdfMap& map, const RgbdFrame& fra
   } else if (used(thresholds_.depth_change_m) && s.depth_change_m > thresholds_.depth_change_m) {
     reason = "depth change " + std::to_string(s.depth_change_m) + " m above " +
              std::to_string(thresholds_.depth_change_m) + " m";
+  } else if (used(thresholds_.surface_change) && s.surface_change > thresholds_.surface_change) {
+    reason = "surface change " + std::to_string(s.surface_change) + " above " +
+             std::to_string(thresholds_.surface_change) + " (measured surface the map lacks)";
   }
   out.selected = !reason.empty();
   out.reason = out.selected ? reason : "map already explains the frame";

@@ -64,6 +64,7 @@ selection::SelectionConfig selectionConfig(const SelectOptions& o) {
   c.thresholds.coverage = o.coverage_threshold;
   c.thresholds.color_change = o.change_threshold;
   c.thresholds.depth_change_m = o.depth_threshold_m;
+  c.thresholds.surface_change = o.surface_threshold;
   c.thresholds.ncc = o.ncc_threshold;
   c.thresholds.histogram = o.hist_threshold;
   c.validate();
@@ -80,9 +81,10 @@ std::string summary(const SelectOptions& o, const Scored& scored,
       << " selected by '" << selection::methodName(c.method) << "' against " << o.map_path << " ("
       << (o.calibrate_dir.empty() ? "given" : "automatic") << " thresholds: coverage < "
       << c.thresholds.coverage << ", colour change > " << c.thresholds.color_change
-      << ", depth change > " << c.thresholds.depth_change_m << " m, ncc < " << c.thresholds.ncc
-      << ", hist < " << c.thresholds.histogram << "; window " << c.smoothing_window << ", dilation "
-      << c.dilation << ", every " << o.stride_px << " px). Raycast device time "
+      << ", depth change > " << c.thresholds.depth_change_m << " m, surface change > "
+      << c.thresholds.surface_change << ", ncc < " << c.thresholds.ncc << ", hist < "
+      << c.thresholds.histogram << "; window " << c.smoothing_window << ", dilation " << c.dilation
+      << ", every " << o.stride_px << " px). Raycast device time "
       << scored.device_ms / std::max<std::size_t>(n, 1) << " ms per keyframe, " << wall_s
       << " s in all. Wrote " << o.out_dir << "/keyframes.csv";
   for (const auto& f : files) out << ", " << f;
@@ -143,6 +145,10 @@ CLI::App* addSelectCommand(CLI::App& app, SelectOptions& o) {
       ->capture_default_str();
   c->add_option("--depth-threshold", o.depth_threshold_m,
                 "Select above this depth change, metres (negative: unused)")
+      ->capture_default_str();
+  c->add_option("--surface-threshold", o.surface_threshold,
+                "Select above this share of measured samples the map does not hold (negative: "
+                "unused; kept under --calibrate)")
       ->capture_default_str();
   c->add_option("--ncc-threshold", o.ncc_threshold, "ncc: select below")->capture_default_str();
   c->add_option("--hist-threshold", o.hist_threshold, "hist: select below")->capture_default_str();

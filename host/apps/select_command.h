@@ -26,6 +26,7 @@ struct SelectOptions {
   double coverage_threshold = 0.9;
   double change_threshold = 0.25;
   double depth_threshold_m = 0.15;
+  double surface_threshold = 0.02;
   double ncc_threshold = 0.5;
   double hist_threshold = 0.8;
   int frames = 0;  // 0: all

@@ -3,8 +3,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <string>
 #include <filesystem>
+#include <string>
 
 #include "apps/diff_pipeline.h"
 #include "apps/progress.h"
@@ -31,19 +31,6 @@ class SubsetDataset : public Dataset {
   const Dataset& base_;
   std::vector<std::size_t> indices_;
 };
-
-/// The selection map: 5 cm voxels (scoring needs the map's shape, not its detail), constant
-/// weights, free space carved so later sessions see removed objects go.
-selection::LoopConfig loopConfig(bool incremental) {
-  selection::LoopConfig c;
-  c.map.voxel_size_m = 0.05f;
-  c.map.weight_mode = WeightMode::kConstant;
-  c.map.allocate_free_space = true;
-  c.incremental = incremental;
-  c.with_truth = true;
-  c.with_reference = !incremental;
-  return c;
-}
 
 std::vector<std::size_t> indicesOf(const std::vector<std::uint8_t>& fused) {
   std::vector<std::size_t> out;
@@ -79,14 +66,17 @@ change::ObjectCounts detectOnSelected(vk::Context& context, const sim::World& wo
   return change::evaluateWorld(world, objects, result.static_mesh, seen, eval_config).totals;
 }
 
-/// Per session after the first: the plot of the metrics along the trajectory with the selected and
+/// Per session: the plot of the metrics along the trajectory with the selected and
 /// the truly positive keyframes, and the same as CSV (metrics, decisions, true pixel shares).
 void writeSessionFiles(const selection::SelectionLoop& loop, const Sessions& sessions,
                        const std::string& out_dir, std::vector<std::string>& files) {
   selection::SelectionConfig config = loop.config().selection;
   config.thresholds = loop.thresholds();
   for (const auto& run : loop.sessions()) {
-    if (run.session == 0) continue;
+    // Session 0 was scored against its own map: its file shows where the automatic thresholds
+    // come from (its decisions are what they would be; all of it was fused).
+    const selection::TrajectorySelection selection =
+        run.session == 0 ? selection::selectKeyframes(run.scores, config) : run.selection;
     const std::filesystem::path stem =
         std::filesystem::path(out_dir) / ("select_session_" + std::to_string(run.session));
     std::vector<std::uint8_t> truth;
@@ -97,8 +87,8 @@ void writeSessionFiles(const selection::SelectionLoop& loop, const Sessions& ses
       keyframes[i].score = run.scores[i];
     }
     for (const auto& t : run.truth) truth.push_back(t.positive ? 1 : 0);
-    writeColorPng(stem.string() + ".png", renderSelectionPlot(run.selection, config, truth));
-    writeSelectionCsv(stem.string() + ".csv", keyframes, run.selection, run.truth);
+    writeColorPng(stem.string() + ".png", renderSelectionPlot(selection, config, truth));
+    writeSelectionCsv(stem.string() + ".csv", keyframes, selection, run.truth);
     files.push_back(stem.string() + ".png");
     files.push_back(stem.string() + ".csv");
   }
@@ -111,8 +101,8 @@ IncrementalResult runIncremental(vk::Context& context, const sim::World& world,
                                  const DiffRunInfo& info, const change::WorldEvaluation& complete,
                                  const std::string& out_dir, bool quiet) {
   const auto start = std::chrono::steady_clock::now();
-  selection::SelectionLoop full(context, loopConfig(false));
-  selection::SelectionLoop incremental(context, loopConfig(true));
+  selection::SelectionLoop full(context, selection::demoLoopConfig(false));
+  selection::SelectionLoop incremental(context, selection::demoLoopConfig(true));
   std::size_t total = 0, done = 0;
   for (const auto& s : sessions) total += 4 * s->size();
   ProgressBar progress("keyframe selection: complete + incremental", total, !quiet);
@@ -148,16 +138,17 @@ std::string summarizeIncremental(const IncrementalResult& r) {
       text, sizeof(text),
       "Keyframe selection (recall/precision/accuracy against the simulator's truth, sessions 1+): "
       "ours %.1f/%.1f/%.1f %%, NCC %.1f/%.1f/%.1f %%, histogram %.1f/%.1f/%.1f %%; device and "
-      "reference hit masks agree on %.3f %% of samples, %zu decisions differ. Incremental: fused "
+      "reference hit masks agree on %.3f %% of samples, surface checks on %.3f %%, %zu decisions "
+      "differ. Incremental: fused "
       "%zu of %zu keyframes after the first session (%.1f %%), surface coverage %.2f %% vs "
       "%.2f %% fusing all; change detection on the selected keyframes found %zu of %zu moved "
       "objects (all keyframes: %zu of %zu). %.1f s.",
       100 * ours.recall(), 100 * ours.precision(), 100 * ours.accuracy(), 100 * ncc.recall(),
       100 * ncc.precision(), 100 * ncc.accuracy(), 100 * hist.recall(), 100 * hist.precision(),
-      100 * hist.accuracy(), 100 * r.agreement.hitAgreement(), r.agreement.decision_mismatches,
-      r.images.fused, r.images.total, 100 * r.images.share(), 100 * r.coverage_incremental,
-      100 * r.coverage_complete, r.objects_incremental.found, r.objects_incremental.moved,
-      r.objects_complete.found, r.objects_complete.moved, r.wall_s);
+      100 * hist.accuracy(), 100 * r.agreement.hitAgreement(), 100 * r.agreement.surfaceAgreement(),
+      r.agreement.decision_mismatches, r.images.fused, r.images.total, 100 * r.images.share(),
+      100 * r.coverage_incremental, 100 * r.coverage_complete, r.objects_incremental.found,
+      r.objects_incremental.moved, r.objects_complete.found, r.objects_complete.moved, r.wall_s);
   return text;
 }
 

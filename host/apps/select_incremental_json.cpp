@@ -29,8 +29,9 @@ std::string incrementalJson(const IncrementalResult& r) {
   std::ostringstream out;
   out.precision(6);
   const selection::Thresholds& t = r.thresholds;
-  out << "{\"thresholds\": {\"coverage\": " << t.coverage << ", \"color_change\": "
-      << t.color_change << ", \"depth_change_m\": " << t.depth_change_m << ", \"ncc\": " << t.ncc
+  out << "{\"thresholds\": {\"coverage\": " << t.coverage
+      << ", \"color_change\": " << t.color_change << ", \"depth_change_m\": " << t.depth_change_m
+      << ", \"surface_change\": " << t.surface_change << ", \"ncc\": " << t.ncc
       << ", \"histogram\": " << t.histogram << "}, \"methods\": [";
   for (std::size_t i = 0; i < r.methods.size(); ++i) {
     if (i > 0) out << ", ";
@@ -38,6 +39,7 @@ std::string incrementalJson(const IncrementalResult& r) {
   }
   out << "], \"device_vs_reference\": {\"samples\": " << r.agreement.samples
       << ", \"hit_mismatches\": " << r.agreement.hit_mismatches
+      << ", \"surface_mismatches\": " << r.agreement.surface_mismatches
       << ", \"keyframes\": " << r.agreement.keyframes
       << ", \"decision_mismatches\": " << r.agreement.decision_mismatches
       << "}, \"keyframes_after_first_session\": {\"fused\": " << r.images.fused

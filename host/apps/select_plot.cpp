@@ -98,6 +98,9 @@ std::vector<Panel> panelsOf(const selection::TrajectorySelection& s,
   if (t.depth_change_m >= 0.0) {
     panels.push_back({"DEPTH CHANGE (M)", &s.depth_change_m, t.depth_change_m});
   }
+  if (t.surface_change >= 0.0) {
+    panels.push_back({"SURFACE CHANGE", &s.surface_change, t.surface_change});
+  }
   return panels;
 }
 

@@ -75,6 +75,16 @@ double coverage(const SampleRaycast& r, const SamplePairs& p, int* hits) {
   return static_cast<double>(measured_hits) / measured;
 }
 
+/// Share of the samples with a surface check whose measured point the map does not hold.
+double surfaceChange(const SampleRaycast& r) {
+  int checked = 0, not_held = 0;
+  for (SurfaceCheck c : r.surface) {
+    checked += c != SurfaceCheck::kNoMeasurement;
+    not_held += c == SurfaceCheck::kNotHeld;
+  }
+  return checked > 0 ? static_cast<double>(not_held) / checked : 0.0;
+}
+
 float grey(const Rgb& rgb) { return (rgb[0] + rgb[1] + rgb[2]) / 3.0f; }
 
 /// Pearson correlation of two equally long series; 1 when either is constant and both are equal,
@@ -123,6 +133,9 @@ void checkSizes(const SampleRaycast& r, const RgbdFrame& frame) {
                      std::to_string(frame.depth.width_px) + "x" +
                      std::to_string(frame.depth.height_px) + " depth image");
   }
+  if (!r.surface.empty() && r.surface.size() != n) {
+    throw InputError("keyframe '" + frame.name + "': surface checks do not fit its sample grid");
+  }
   if (!frame.color.empty() && (frame.color.width_px != frame.depth.width_px ||
                                frame.color.height_px != frame.depth.height_px)) {
     throw InputError("keyframe '" + frame.name + "': colour and depth sizes differ");
@@ -136,6 +149,7 @@ void ScorerConfig::validate() const {
   if (!(min_weight >= 0.0f)) throw InputError("min_weight must be >= 0");
   if (!(max_depth_difference_m > 0.0f)) throw InputError("max_depth_difference_m must be > 0");
   if (!(depth_tolerance_m >= 0.0f)) throw InputError("depth_tolerance_m must be >= 0");
+  if (!(held_tolerance_voxels > 0.0f)) throw InputError("held_tolerance_voxels must be > 0");
   if (histogram_bins < 2) throw InputError("histogram_bins must be >= 2");
 }
 
@@ -165,6 +179,7 @@ KeyframeScore scoreSamples(const SampleRaycast& rendered, const RgbdFrame& frame
   s.samples = rendered.grid.count();
   s.coverage = coverage(rendered, pairs, &s.hits);
   s.depth_change_m = upperHalfMeanOf(differences.depth_m);
+  s.surface_change = surfaceChange(rendered);
   if (frame.color.empty()) {
     s.ncc = s.histogram = 1.0;  // nothing to compare: no evidence of change
     return s;

@@ -14,13 +14,25 @@ RaycastOptions raycastOptions(const ScorerConfig& config) {
 
 }  // namespace
 
+MeasuredSamples measuredSamples(const SampleGrid& grid, const RgbdFrame& frame,
+                                const ScorerConfig& config, float voxel_size_m) {
+  MeasuredSamples measured;
+  std::vector<std::uint32_t> color_rgb;
+  keyframeAtSamples(grid, frame, measured.depth_m, color_rgb);
+  measured.held_tolerance_m = config.held_tolerance_voxels * voxel_size_m;
+  return measured;
+}
+
 KeyframeScore scoreKeyframeReference(const TsdfMap& map, const RgbdFrame& frame,
                                      const CameraIntrinsics& intrinsics, const ScorerConfig& config,
                                      SampleRaycast* rendered) {
   config.validate();
   validateFrame(frame, intrinsics);
-  SampleRaycast samples = raycastSamplesReference(map, intrinsics, frame.T_W_C,
-                                                  config.sample_stride_px, raycastOptions(config));
+  const MeasuredSamples measured =
+      measuredSamples(SampleGrid::of(intrinsics, config.sample_stride_px), frame, config,
+                      map.config().voxel_size_m);
+  SampleRaycast samples = raycastSamplesReference(
+      map, intrinsics, frame.T_W_C, config.sample_stride_px, raycastOptions(config), &measured);
   KeyframeScore score = scoreSamples(samples, frame, config);
   if (rendered != nullptr) *rendered = std::move(samples);
   return score;
@@ -36,10 +48,13 @@ KeyframeScore KeyframeScorer::score(DeviceTsdfMap& map, const RgbdFrame& frame,
                                     SampleRaycast* rendered, SampleDifferences* differences) {
   validateFrame(frame, intrinsics);
   double raycast_ms = 0.0, difference_ms = 0.0;
+  const MeasuredSamples measured =
+      measuredSamples(SampleGrid::of(intrinsics, config_.sample_stride_px), frame, config_,
+                      map.config().voxel_size_m);
   SampleRaycast samples = kernel_.run(map, intrinsics, frame.T_W_C, config_.sample_stride_px,
-                                      raycastOptions(config_), &raycast_ms);
-  SampleDifferences per_sample = difference_kernel_.run(
-      kernel_, samples.grid, frame, differenceOptions(config_), &difference_ms);
+                                      raycastOptions(config_), &raycast_ms, &measured);
+  SampleDifferences per_sample = difference_kernel_.run(kernel_, samples.grid, frame,
+                                                        differenceOptions(config_), &difference_ms);
   if (device_ms != nullptr) *device_ms = raycast_ms + difference_ms;
   KeyframeScore score = scoreSamples(samples, frame, config_, per_sample);
   if (rendered != nullptr) *rendered = std::move(samples);

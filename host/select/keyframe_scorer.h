@@ -9,6 +9,11 @@
 //                   new images (the upper half, so a small changed region counts)
 //   depth change  = the same statistic on |new depth - rendered depth| beyond a tolerance (metres),
 //                   where depth exists
+//   surface change = share of the samples with measured depth whose measured point the map does
+//                   not hold (unobserved there, or its interpolated distance more than
+//                   `held_tolerance_voxels` of its voxels from zero): new space and geometric
+//                   change in one number, as a distance to the map's surface rather than along
+//                   the ray, so grazing views of a mapped floor do not count
 // plus the two image-similarity baselines (normalised cross-correlation, 10-bin histogram
 // correlation). Along a trajectory the metrics are smoothed, thresholded and the selection dilated
 // (keyframe_selection.h).
@@ -42,6 +47,9 @@ struct ScorerConfig {
   /// Depth differences up to this count as none: sensor noise (~2 cm at 4 m) plus the rendered
   /// surface's voxelisation. 5 cm is also what the ground truth calls a moved surface.
   float depth_tolerance_m = 0.05f;
+  /// Surface check: the map holds a measured point within this many of its voxels (2 on a 5 cm
+  /// map: 10 cm, sensor noise at 4 m plus the voxelisation of thin parts).
+  float held_tolerance_voxels = 2.0f;
   /// Histogram baseline: bins of grey level.
   int histogram_bins = 10;
 
@@ -58,6 +66,7 @@ struct KeyframeScore {
   double depth_change_m = 0.0;  // upper-half mean of |depth difference| (0 without depth)
   double ncc = 0.0;             // baseline: normalised cross-correlation of grey images
   double histogram = 0.0;       // baseline: correlation of grey-level histograms
+  double surface_change = 0.0;  // share of measured samples the map does not hold (0 w/o depth)
 };
 
 /// Metrics from the raycast samples and the keyframe's images: the host half of scoring, shared
@@ -70,7 +79,11 @@ KeyframeScore scoreSamples(const SampleRaycast& rendered, const RgbdFrame& frame
 /// The per-sample difference settings of a scorer config.
 SampleDifferenceOptions differenceOptions(const ScorerConfig& config);
 
-/// Host reference: raycastSamplesReference + scoreSamples.
+/// The surface-check input of a keyframe: its depth at the grid samples, tolerance in metres.
+MeasuredSamples measuredSamples(const SampleGrid& grid, const RgbdFrame& frame,
+                                const ScorerConfig& config, float voxel_size_m);
+
+/// Host reference: raycastSamplesReference (with the surface check) + scoreSamples.
 KeyframeScore scoreKeyframeReference(const TsdfMap& map, const RgbdFrame& frame,
                                      const CameraIntrinsics& intrinsics,
                                      const ScorerConfig& config = {},

@@ -29,7 +29,8 @@ std::vector<std::uint8_t> dilate(const std::vector<std::uint8_t>& triggered, int
 bool triggeredOurs(const TrajectorySelection& s, std::size_t i, const Thresholds& t) {
   return (t.coverage >= 0.0 && s.coverage[i] < t.coverage) ||
          (t.color_change >= 0.0 && s.color_change[i] > t.color_change) ||
-         (t.depth_change_m >= 0.0 && s.depth_change_m[i] > t.depth_change_m);
+         (t.depth_change_m >= 0.0 && s.depth_change_m[i] > t.depth_change_m) ||
+         (t.surface_change >= 0.0 && s.surface_change[i] > t.surface_change);
 }
 
 }  // namespace
@@ -86,6 +87,7 @@ TrajectorySelection selectKeyframes(const std::vector<KeyframeScore>& scores,
   s.coverage = movingAverage(metric(scores, [](auto& k) { return k.coverage; }), w);
   s.color_change = movingAverage(metric(scores, [](auto& k) { return k.color_change; }), w);
   s.depth_change_m = movingAverage(metric(scores, [](auto& k) { return k.depth_change_m; }), w);
+  s.surface_change = movingAverage(metric(scores, [](auto& k) { return k.surface_change; }), w);
   s.similarity.assign(scores.size(), 0.0);
   if (config.method == Method::kNcc) {
     s.similarity = movingAverage(metric(scores, [](auto& k) { return k.ncc; }), w);

@@ -26,6 +26,19 @@ void collectSurface(const sim::SimulatedFrame& frame, const Eigen::Isometry3d& t
 
 }  // namespace
 
+LoopConfig demoLoopConfig(bool incremental) {
+  LoopConfig c;
+  c.map.voxel_size_m = 0.05f;
+  c.map.weight_mode = WeightMode::kConstant;
+  c.map.allocate_free_space = true;
+  c.selection.smoothing_window = 1;
+  c.selection.dilation = 0;
+  c.incremental = incremental;
+  c.with_truth = true;
+  c.with_reference = !incremental;
+  return c;
+}
+
 std::size_t SessionRun::fusedCount() const {
   return static_cast<std::size_t>(std::count(fused.begin(), fused.end(), 1));
 }

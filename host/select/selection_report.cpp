@@ -38,6 +38,10 @@ double DeviceReferenceAgreement::hitAgreement() const {
   return samples > 0 ? 1.0 - static_cast<double>(hit_mismatches) / samples : 1.0;
 }
 
+double DeviceReferenceAgreement::surfaceAgreement() const {
+  return samples > 0 ? 1.0 - static_cast<double>(surface_mismatches) / samples : 1.0;
+}
+
 DeviceReferenceAgreement deviceReferenceAgreement(const SelectionLoop& loop) {
   DeviceReferenceAgreement a;
   for (const SessionRun& run : loop.sessions()) {
@@ -46,6 +50,11 @@ DeviceReferenceAgreement deviceReferenceAgreement(const SelectionLoop& loop) {
       const auto& reference = run.reference_samples[k].hit;
       a.samples += device.size();
       for (std::size_t i = 0; i < device.size(); ++i) a.hit_mismatches += device[i] != reference[i];
+      const auto& device_surface = run.device_samples[k].surface;
+      const auto& reference_surface = run.reference_samples[k].surface;
+      for (std::size_t i = 0; i < device_surface.size(); ++i) {
+        a.surface_mismatches += device_surface[i] != reference_surface.at(i);
+      }
     }
     if (run.session == 0) continue;
     a.keyframes += run.scores.size();

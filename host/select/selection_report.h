@@ -22,9 +22,11 @@ std::vector<MethodResult> evaluateMethods(const SelectionLoop& loop);
 struct DeviceReferenceAgreement {
   std::size_t samples = 0;
   std::size_t hit_mismatches = 0;       // samples whose hit differs
+  std::size_t surface_mismatches = 0;   // samples whose surface check differs
   std::size_t keyframes = 0;            // sessions >= 1
   std::size_t decision_mismatches = 0;  // per method: keyframes decided differently, summed
   double hitAgreement() const;
+  double surfaceAgreement() const;
 };
 
 /// Needs a loop run with_reference: the reference path decides with its own scores and its own
