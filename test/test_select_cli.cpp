@@ -4,7 +4,12 @@
 
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <tuple>
 
+#include <unistd.h>
+
+#include "apps/demo_command.h"
 #include "apps/select_command.h"
 #include "apps/select_outputs.h"
 #include "apps/select_plot.h"
@@ -171,6 +176,25 @@ TEST_F(SelectCliTest, TruthColumnsAndStrip) {
   };
   EXPECT_EQ(count(plain, 70, 70, 190), 0u);
   EXPECT_GT(count(with_truth, 70, 70, 190), 0u);  // the two positive keyframes' cells
+}
+
+// A bad selection setting of `strata demo --incremental` ends it before any session is simulated.
+TEST(SelectDemoOptions, BadWindowOrDilationExitsBeforeTheWork) {
+  apps::DemoOptions o;
+  o.incremental = true;
+  o.quiet = true;
+  o.out_dir = (fs::temp_directory_path() / ("strata_demo_bad_" + std::to_string(::getpid())))
+                  .string();
+  for (const auto& [window, dilation, field] :
+       {std::tuple{4, 0, "smoothing_window"}, std::tuple{1, -1, "dilation"}}) {
+    o.select_window = window;
+    o.select_dilation = dilation;
+    testing::internal::CaptureStderr();
+    EXPECT_EQ(apps::runDemo(o), 2);
+    const std::string err = testing::internal::GetCapturedStderr();
+    EXPECT_NE(err.find(field), std::string::npos) << err;
+    EXPECT_FALSE(fs::exists(o.out_dir)) << "nothing written";
+  }
 }
 
 }  // namespace

@@ -1,7 +1,6 @@
 #include "apps/demo_command.h"
 
 #include <CLI/CLI.hpp>
-
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -95,7 +94,8 @@ DiffResult detectChanges(vk::Context& context, const MapConfig& map_config, cons
   for (const auto& session : sessions) total += session->size();
   DiffPipeline pipeline(context, map_config, info.change, info.objects);
   ProgressBar progress("simulate + fuse + detect changes", total, !quiet);
-  for (const auto& session : sessions) pipeline.addSession(*session, session->name(), progress, done);
+  for (const auto& session : sessions)
+    pipeline.addSession(*session, session->name(), progress, done);
   progress.finish();
   return pipeline.finish(&maps);
 }
@@ -104,6 +104,15 @@ DiffResult detectChanges(vk::Context& context, const MapConfig& map_config, cons
 
 DemoReport runDemoPipeline(const DemoOptions& o) {
   const auto start = Clock::now();
+  IncrementalOptions select;
+  select.smoothing_window = o.select_window;
+  select.dilation = o.select_dilation;
+  if (o.incremental) {  // before minutes of fusion, not after
+    selection::SelectionConfig check;
+    check.smoothing_window = select.smoothing_window;
+    check.dilation = select.dilation;
+    check.validate();
+  }
   const auto world = loadWorld(o.world, o.seed, o.sessions);
   const sim::SimSessionConfig config = sessionConfig(30.0, o.frames, !o.no_noise, false);
   const MapConfig map_config = changeMapConfig(o.voxel_size_m);  // min_weight counts frames
@@ -136,8 +145,9 @@ DemoReport runDemoPipeline(const DemoOptions& o) {
   for (auto& r : results) report.sessions.push_back(r.get());
   report.evaluation = evaluate(*world, result, sessions, info.change);
   if (o.incremental) {
-    const IncrementalResult incremental = runIncremental(
-        *context, *world, sessions, map_config, info, report.evaluation, o.out_dir, o.quiet);
+    const IncrementalResult incremental =
+        runIncremental(*context, *world, sessions, map_config, info, report.evaluation, o.out_dir,
+                       o.quiet, select);
     report.incremental_summary = summarizeIncremental(incremental);
     report.incremental_json = incrementalJson(incremental);
   }
@@ -162,6 +172,12 @@ CLI::App* addDemoCommand(CLI::App& app, DemoOptions& o) {
   demo->add_flag("--quiet", o.quiet, "No progress bar");
   demo->add_flag("--incremental", o.incremental,
                  "Also select keyframes and fuse only those (issue 6); about doubles the time");
+  demo->add_option("--select-window", o.select_window,
+                   "With --incremental: moving-average window of the selection, keyframes (odd)")
+      ->capture_default_str();
+  demo->add_option("--select-dilation", o.select_dilation,
+                   "With --incremental: keyframes added on each side of a selected one")
+      ->capture_default_str();
   return demo;
 }
 

@@ -17,7 +17,7 @@ struct DemoOptions {
   int sessions = 0;   // 0 = the world's count
   std::string out_dir = "strata_out";
   std::uint64_t seed = 0;
-  int frames = 60;    // per session, spread over the path
+  int frames = 60;  // per session, spread over the path
   float voxel_size_m = 0.02f;
   /// Frames a voxel must be seen in to count as observed (change detection's minimum weight; the
   /// demo fuses with constant weights). 60 frames spread over a session see most surfaces 3+
@@ -28,6 +28,10 @@ struct DemoOptions {
   bool quiet = false;
   /// Also run keyframe selection's incremental loop (issue 6): about doubles the demo's time.
   bool incremental = false;
+  /// Its moving-average window and dilation, keyframes (selection::demoLoopConfig: 1 and 0, the
+  /// demo's keyframes being 2.8 s apart; the method's 5 and 1 suit overlapping keyframes).
+  int select_window = 1;
+  int select_dilation = 0;
 };
 
 struct DemoReport;

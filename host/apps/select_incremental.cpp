@@ -99,10 +99,17 @@ void writeSessionFiles(const selection::SelectionLoop& loop, const Sessions& ses
 IncrementalResult runIncremental(vk::Context& context, const sim::World& world,
                                  const Sessions& sessions, const MapConfig& change_map,
                                  const DiffRunInfo& info, const change::WorldEvaluation& complete,
-                                 const std::string& out_dir, bool quiet) {
+                                 const std::string& out_dir, bool quiet,
+                                 const IncrementalOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-  selection::SelectionLoop full(context, selection::demoLoopConfig(false));
-  selection::SelectionLoop incremental(context, selection::demoLoopConfig(true));
+  const auto configured = [&options](bool incremental) {
+    selection::LoopConfig c = selection::demoLoopConfig(incremental);
+    c.selection.smoothing_window = options.smoothing_window;
+    c.selection.dilation = options.dilation;
+    return c;
+  };
+  selection::SelectionLoop full(context, configured(false));
+  selection::SelectionLoop incremental(context, configured(true));
   std::size_t total = 0, done = 0;
   for (const auto& s : sessions) total += 4 * s->size();
   ProgressBar progress("keyframe selection: complete + incremental", total, !quiet);

@@ -11,6 +11,7 @@
 #include "apps/diff_report.h"
 #include "change/evaluation_session.h"
 #include "change/evaluation_world.h"
+#include "select/selection_loop.h"
 #include "select/selection_report.h"
 
 namespace strata::apps {
@@ -28,13 +29,20 @@ struct IncrementalResult {
   double wall_s = 0.0;
 };
 
+/// Smoothing and dilation of the demo's selection (selection::demoLoopConfig's by default).
+struct IncrementalOptions {
+  int smoothing_window = selection::demoLoopConfig(true).selection.smoothing_window;
+  int dilation = selection::demoLoopConfig(true).selection.dilation;
+};
+
 /// `sessions`: the demo's sessions, already fused by its complete run (their seen() surfaces are
 /// the truth both change detections are scored against); `complete`: that run's evaluation.
+/// A bad window or dilation throws InputError.
 IncrementalResult runIncremental(
     vk::Context& context, const sim::World& world,
     const std::vector<std::unique_ptr<change::RecordingSession>>& sessions,
     const MapConfig& change_map, const DiffRunInfo& info, const change::WorldEvaluation& complete,
-    const std::string& out_dir, bool quiet);
+    const std::string& out_dir, bool quiet, const IncrementalOptions& options = {});
 
 /// A few sentences for the demo's closing paragraph.
 std::string summarizeIncremental(const IncrementalResult& result);
