@@ -3,9 +3,7 @@
 
 #include <cmath>
 #include <cstring>
-#include <string>
 
-#include "core/error.h"
 #include "kernels/device_layout.h"
 #include "kernels/device_tsdf_map.h"
 #include "kernels/select_layout.h"
@@ -30,13 +28,7 @@ void SampleRaycastKernel::ensureOutput(std::size_t sample_count) {
 
 void SampleRaycastKernel::uploadMeasured(const MeasuredSamples* measured,
                                          std::size_t sample_count) {
-  if (measured != nullptr && measured->depth_m.size() != sample_count) {
-    throw InputError("surface check: " + std::to_string(measured->depth_m.size()) +
-                     " measured depths for " + std::to_string(sample_count) + " samples");
-  }
-  if (measured != nullptr && !(measured->held_tolerance_m >= 0.0f)) {
-    throw InputError("surface check: held tolerance must be >= 0");
-  }
+  if (measured != nullptr) measured->validate(sample_count);
   // Explicit host->device copy: the tolerance, then the depths (zeros: no surface check).
   auto* floats = static_cast<float*>(measured_.mapped());
   floats[0] = measured != nullptr ? measured->held_tolerance_m : 0.0f;

@@ -41,6 +41,9 @@ struct MeasuredSamples {
   std::vector<float> depth_m;
   /// The map holds a measured point when |interpolated TSDF| there is at most this.
   float held_tolerance_m = 0.1f;
+
+  /// InputError unless there is one depth per sample and the tolerance is >= 0.
+  void validate(std::size_t sample_count) const;
 };
 
 /// What each sample's ray found, row-major over the grid.

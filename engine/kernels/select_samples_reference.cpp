@@ -29,6 +29,14 @@ SurfaceCheck surfaceCheck(const TsdfMap& map, const Eigen::Vector3f& origin_W,
 
 }  // namespace
 
+void MeasuredSamples::validate(std::size_t sample_count) const {
+  if (depth_m.size() != sample_count) {
+    throw InputError("surface check: " + std::to_string(depth_m.size()) + " measured depths for " +
+                     std::to_string(sample_count) + " samples");
+  }
+  if (!(held_tolerance_m >= 0.0f)) throw InputError("surface check: held tolerance must be >= 0");
+}
+
 SampleGrid SampleGrid::of(const CameraIntrinsics& intrinsics, int stride_px) {
   intrinsics.validate();
   if (stride_px < 1 || stride_px > std::min(intrinsics.width_px, intrinsics.height_px)) {
@@ -55,13 +63,7 @@ SampleRaycast raycastSamplesReference(const TsdfMap& map, const CameraIntrinsics
   out.depth_m.assign(n, 0.0f);
   out.color_rgba.assign(n, 0);
   out.surface.assign(n, SurfaceCheck::kNoMeasurement);
-  if (measured != nullptr && measured->depth_m.size() != n) {
-    throw InputError("surface check: " + std::to_string(measured->depth_m.size()) +
-                     " measured depths for " + std::to_string(n) + " samples");
-  }
-  if (measured != nullptr && !(measured->held_tolerance_m >= 0.0f)) {
-    throw InputError("surface check: held tolerance must be >= 0");
-  }
+  if (measured != nullptr) measured->validate(n);
   const MapConfig& config = map.config();
   const FrameCamera camera = FrameCamera::from(intrinsics, T_W_C);
   const Eigen::Matrix3f R_W_C = camera.T_W_C.topLeftCorner<3, 3>();
