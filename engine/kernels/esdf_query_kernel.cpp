@@ -5,6 +5,7 @@
 
 #include "kernels/device_layout.h"
 #include "kernels/device_tsdf_map.h"
+#include "kernels/timed_dispatch.h"
 
 namespace strata {
 namespace {
@@ -110,20 +111,10 @@ EsdfQueryResult EsdfQueryKernel::run(const DeviceEsdfView& esdf,
       vk::DescriptorSet::create(context_, pipe,
                                 {&esdf.tsdf.hashEntries(), &points_, &samples_, &flags_,
                                  has_pool ? &esdf.esdf_pool : &empty_pool_});
-  vk::CommandBuffer cmd = vk::CommandBuffer::create(context_);
-  cmd.begin();
-  cmd.resetQueries(timer_);
-  cmd.writeTimestamp(timer_, 0);
-  cmd.bind(pipe, set);
-  cmd.pushConstants(pipe, &push, sizeof(push));
   const std::uint32_t groups = (push.point_count + kWorkgroupSize - 1) / kWorkgroupSize;
   const std::uint32_t groups_x = std::min(groups, kMaxGroupsPerDimension);
-  cmd.dispatch(groups_x, (groups + groups_x - 1) / groups_x);
-  cmd.barrier();
-  cmd.writeTimestamp(timer_, 1);
-  cmd.end();
-  cmd.submitAndWait();
-  result.device_ms = timer_.elapsedMs(0, 1);
+  result.device_ms = dispatchTimed(context_, pipe, set, &push, sizeof(push), groups_x,
+                                   (groups + groups_x - 1) / groups_x, timer_);
 
   const auto* samples = static_cast<const float*>(samples_.mapped());
   const auto* flags = static_cast<const std::uint32_t*>(flags_.mapped());

@@ -4,6 +4,7 @@
 
 #include "kernels/device_layout.h"
 #include "kernels/device_tsdf_map.h"
+#include "kernels/timed_dispatch.h"
 
 namespace strata {
 
@@ -49,18 +50,10 @@ RaycastImage RaycastKernel::run(DeviceTsdfMap& map, const CameraIntrinsics& intr
 
   vk::DescriptorSet set = vk::DescriptorSet::create(
       context_, pipeline_, {&map.hashEntries(), &depth_out_, &normal_out_, &color_out_});
-  vk::CommandBuffer cmd = vk::CommandBuffer::create(context_);
-  cmd.begin();
-  cmd.resetQueries(timer_);
-  cmd.writeTimestamp(timer_, 0);
-  cmd.bind(pipeline_, set);
-  cmd.pushConstants(pipeline_, &push, sizeof(push));
-  cmd.dispatch((push.image_size[0] + 15) / 16, (push.image_size[1] + 15) / 16);
-  cmd.barrier();
-  cmd.writeTimestamp(timer_, 1);
-  cmd.end();
-  cmd.submitAndWait();
-  if (device_ms != nullptr) *device_ms = timer_.elapsedMs(0, 1);
+  const double ms =
+      dispatchTimed(context_, pipeline_, set, &push, sizeof(push), (push.image_size[0] + 15) / 16,
+                    (push.image_size[1] + 15) / 16, timer_);
+  if (device_ms != nullptr) *device_ms = ms;
 
   RaycastImage out{DepthImage(intrinsics.width_px, intrinsics.height_px),
                    std::vector<Eigen::Vector3f>(pixels, Eigen::Vector3f::Zero()),

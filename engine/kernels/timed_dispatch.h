@@ -1,7 +1,7 @@
 #pragma once
 // One compute dispatch between two timestamps, submitted and waited for: the shape of every
-// single-pass kernel (the sample kernels of keyframe selection use it; older kernels still spell
-// it out).
+// single-pass kernel (raycast, ESDF queries, the sample kernels of keyframe selection). The
+// multi-pass kernels (fusion, change, occupancy) record several passes into one command buffer.
 #include <cstddef>
 #include <cstdint>
 
