@@ -2,7 +2,9 @@
 #include "kernels/select_differences.h"
 
 #include <cstring>
+#include <string>
 
+#include "core/error.h"
 #include "kernels/select_layout.h"
 #include "kernels/timed_dispatch.h"
 
@@ -23,15 +25,16 @@ void SampleDifferenceKernel::ensureCapacity(std::size_t sample_count) {
   capacity_ = sample_count;
 }
 
-SampleDifferences SampleDifferenceKernel::run(const SampleRaycastKernel& raycast,
-                                              const SampleGrid& grid, const RgbdFrame& frame,
-                                              const SampleDifferenceOptions& options,
-                                              double* device_ms) {
+SampleDifferences SampleDifferenceKernel::run(
+    const SampleRaycastKernel& raycast, const SampleGrid& grid, const std::vector<float>& depth_m,
+    const std::vector<std::uint32_t>& color_rgb, bool has_color,
+    const SampleDifferenceOptions& options, double* device_ms) {
   const std::size_t n = static_cast<std::size_t>(grid.count());
+  if (depth_m.size() != n || color_rgb.size() != n) {
+    throw InputError("sample differences: keyframe samples do not fit the " +
+                     std::to_string(grid.width) + "x" + std::to_string(grid.height) + " grid");
+  }
   ensureCapacity(n);
-  std::vector<float> depth_m;
-  std::vector<std::uint32_t> color_rgb;
-  keyframeAtSamples(grid, frame, depth_m, color_rgb);
   // Explicit host->device copy: interleaved (depth bits, colour) per sample.
   auto* words = static_cast<std::uint32_t*>(keyframe_in_.mapped());
   for (std::size_t i = 0; i < n; ++i) {
@@ -44,7 +47,7 @@ SampleDifferences SampleDifferenceKernel::run(const SampleRaycastKernel& raycast
   push.grid_size[1] = static_cast<std::uint32_t>(grid.height);
   push.depth_tolerance_m = options.depth_tolerance_m;
   push.max_depth_difference_m = options.max_depth_difference_m;
-  push.has_color = frame.color.empty() ? 0u : 1u;
+  push.has_color = has_color ? 1u : 0u;
 
   vk::DescriptorSet set = vk::DescriptorSet::create(
       context_, pipeline_, {&raycast.samplesBuffer(), &keyframe_in_, &differences_out_});

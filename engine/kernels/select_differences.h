@@ -36,11 +36,14 @@ SampleDifferences sampleDifferencesReference(const SampleRaycast& rendered, cons
 class SampleDifferenceKernel {
  public:
   explicit SampleDifferenceKernel(vk::Context& context);
-  /// `raycast` must have just run for `frame` (its samples buffer holds `grid`'s samples). The
-  /// device time goes to *device_ms when non-null.
+  /// `raycast` must have just run for the keyframe (its samples buffer holds `grid`'s samples);
+  /// `depth_m` and `color_rgb` are the keyframe at the grid's pixels (keyframeAtSamples, gathered
+  /// once by the caller, who also needs them for the surface check). The device time goes to
+  /// *device_ms when non-null. Sizes other than the grid's throw InputError.
   SampleDifferences run(const SampleRaycastKernel& raycast, const SampleGrid& grid,
-                        const RgbdFrame& frame, const SampleDifferenceOptions& options,
-                        double* device_ms = nullptr);
+                        const std::vector<float>& depth_m,
+                        const std::vector<std::uint32_t>& color_rgb, bool has_color,
+                        const SampleDifferenceOptions& options, double* device_ms = nullptr);
 
  private:
   void ensureCapacity(std::size_t sample_count);

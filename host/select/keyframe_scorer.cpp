@@ -48,13 +48,18 @@ KeyframeScore KeyframeScorer::score(DeviceTsdfMap& map, const RgbdFrame& frame,
                                     SampleRaycast* rendered, SampleDifferences* differences) {
   validateFrame(frame, intrinsics);
   double raycast_ms = 0.0, difference_ms = 0.0;
-  const MeasuredSamples measured =
-      measuredSamples(SampleGrid::of(intrinsics, config_.sample_stride_px), frame, config_,
-                      map.config().voxel_size_m);
+  // The keyframe at the grid's pixels, once: the raycast's surface check reads its depth, the
+  // differences kernel its depth and colour.
+  const SampleGrid grid = SampleGrid::of(intrinsics, config_.sample_stride_px);
+  MeasuredSamples measured;
+  std::vector<std::uint32_t> color_rgb;
+  keyframeAtSamples(grid, frame, measured.depth_m, color_rgb);
+  measured.held_tolerance_m = config_.held_tolerance_voxels * map.config().voxel_size_m;
   SampleRaycast samples = kernel_.run(map, intrinsics, frame.T_W_C, config_.sample_stride_px,
                                       raycastOptions(config_), &raycast_ms, &measured);
-  SampleDifferences per_sample = difference_kernel_.run(kernel_, samples.grid, frame,
-                                                        differenceOptions(config_), &difference_ms);
+  SampleDifferences per_sample =
+      difference_kernel_.run(kernel_, grid, measured.depth_m, color_rgb, !frame.color.empty(),
+                             differenceOptions(config_), &difference_ms);
   if (device_ms != nullptr) *device_ms = raycast_ms + difference_ms;
   KeyframeScore score = scoreSamples(samples, frame, config_, per_sample);
   if (rendered != nullptr) *rendered = std::move(samples);
