@@ -1,13 +1,12 @@
 // `strata select`: a map and a session folder in, keyframes.csv, selection.png and selected.png
 // out; bad input gives a message naming the problem and a non-zero exit.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <string>
 #include <tuple>
-
-#include <unistd.h>
 
 #include "apps/demo_command.h"
 #include "apps/select_command.h"
@@ -183,12 +182,12 @@ TEST(SelectDemoOptions, BadWindowOrDilationExitsBeforeTheWork) {
   apps::DemoOptions o;
   o.incremental = true;
   o.quiet = true;
-  o.out_dir = (fs::temp_directory_path() / ("strata_demo_bad_" + std::to_string(::getpid())))
-                  .string();
+  o.out_dir =
+      (fs::temp_directory_path() / ("strata_demo_bad_" + std::to_string(::getpid()))).string();
   for (const auto& [window, dilation, field] :
        {std::tuple{4, 0, "smoothing_window"}, std::tuple{1, -1, "dilation"}}) {
-    o.select_window = window;
-    o.select_dilation = dilation;
+    o.select.smoothing_window = window;
+    o.select.dilation = dilation;
     testing::internal::CaptureStderr();
     EXPECT_EQ(apps::runDemo(o), 2);
     const std::string err = testing::internal::GetCapturedStderr();

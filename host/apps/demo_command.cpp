@@ -104,13 +104,10 @@ DiffResult detectChanges(vk::Context& context, const MapConfig& map_config, cons
 
 DemoReport runDemoPipeline(const DemoOptions& o) {
   const auto start = Clock::now();
-  IncrementalOptions select;
-  select.smoothing_window = o.select_window;
-  select.dilation = o.select_dilation;
   if (o.incremental) {  // before minutes of fusion, not after
     selection::SelectionConfig check;
-    check.smoothing_window = select.smoothing_window;
-    check.dilation = select.dilation;
+    check.smoothing_window = o.select.smoothing_window;
+    check.dilation = o.select.dilation;
     check.validate();
   }
   const auto world = loadWorld(o.world, o.seed, o.sessions);
@@ -147,7 +144,7 @@ DemoReport runDemoPipeline(const DemoOptions& o) {
   if (o.incremental) {
     const IncrementalResult incremental =
         runIncremental(*context, *world, sessions, map_config, info, report.evaluation, o.out_dir,
-                       o.quiet, select);
+                       o.quiet, o.select);
     report.incremental_summary = summarizeIncremental(incremental);
     report.incremental_json = incrementalJson(incremental);
   }
@@ -172,10 +169,10 @@ CLI::App* addDemoCommand(CLI::App& app, DemoOptions& o) {
   demo->add_flag("--quiet", o.quiet, "No progress bar");
   demo->add_flag("--incremental", o.incremental,
                  "Also select keyframes and fuse only those (issue 6); about doubles the time");
-  demo->add_option("--select-window", o.select_window,
+  demo->add_option("--select-window", o.select.smoothing_window,
                    "With --incremental: moving-average window of the selection, keyframes (odd)")
       ->capture_default_str();
-  demo->add_option("--select-dilation", o.select_dilation,
+  demo->add_option("--select-dilation", o.select.dilation,
                    "With --incremental: keyframes added on each side of a selected one")
       ->capture_default_str();
   return demo;

@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <string>
 
+#include "apps/select_incremental.h"
+
 namespace CLI {
 class App;
 }
@@ -28,10 +30,9 @@ struct DemoOptions {
   bool quiet = false;
   /// Also run keyframe selection's incremental loop (issue 6): about doubles the demo's time.
   bool incremental = false;
-  /// Its moving-average window and dilation, keyframes (selection::demoLoopConfig: 1 and 0, the
+  /// Its moving-average window and dilation, keyframes (selection::demoLoopConfig's 1 and 0, the
   /// demo's keyframes being 2.8 s apart; the method's 5 and 1 suit overlapping keyframes).
-  int select_window = 1;
-  int select_dilation = 0;
+  IncrementalOptions select;
 };
 
 struct DemoReport;
