@@ -5,6 +5,7 @@
 #include "change/evaluation.h"
 #include "change/evaluation_truth.h"
 #include "change/evaluation_visibility.h"
+#include "change/evaluation_world.h"
 #include "change_test_scene.h"
 #include "core/error.h"
 #include "sim/world/world_paths.h"
@@ -196,6 +197,43 @@ TEST(ChangeEvaluation, MovedObjectsOfTheShippedRoom) {
       }
     }
   }
+}
+
+// Arrivals: a moved object counts only in the sessions in which it changed since the one before.
+TEST(ChangeEvaluation, ArrivalsCountOnlyTheSessionsInWhichAnObjectChanged) {
+  const sim::World world = sim::World::load(sim::defaultWorldPath());
+  ASSERT_GE(world.sessionCount(), 2);
+  const std::vector<int> changed = world.session(1).changedIds();
+  ASSERT_FALSE(changed.empty());
+  int unchanged = 0;  // an object that stood in session 1 as in session 0
+  for (const sim::ObjectState& o : world.session(1).objects) {
+    if (o.present && o.since_previous == sim::Change::kNone) unchanged = o.id;
+  }
+  ASSERT_NE(unchanged, 0);
+  const auto match = [](int id, bool evaluated, bool found) {
+    ObjectMatch m;
+    m.object_id = id;
+    m.evaluated = evaluated;
+    m.found = found;
+    return m;
+  };
+  WorldEvaluation evaluation;
+  evaluation.sessions.resize(2);
+  evaluation.sessions[0].session = 0;  // session 0 has no arrivals, whatever it shows
+  evaluation.sessions[0].objects = {match(changed[0], true, true)};
+  evaluation.sessions[1].session = 1;
+  evaluation.sessions[1].objects = {match(changed[0], true, false), match(unchanged, true, true)};
+  ArrivalCounts counts = arrivalCounts(world, evaluation);
+  EXPECT_EQ(counts.arrivals, 1u);  // the changed object; the unchanged instance is left out
+  EXPECT_EQ(counts.found, 0u);
+  evaluation.sessions[1].objects[0].found = true;
+  counts = arrivalCounts(world, evaluation);
+  EXPECT_EQ(counts.found, 1u);
+  EXPECT_DOUBLE_EQ(counts.recall(), 1.0);
+  evaluation.sessions[1].objects[0].evaluated = false;  // too little of it seen: not counted
+  EXPECT_EQ(arrivalCounts(world, evaluation).arrivals, 0u);
+  evaluation.sessions.resize(world.sessionCount() + 1);
+  EXPECT_THROW(arrivalCounts(world, evaluation), InputError);
 }
 
 }  // namespace

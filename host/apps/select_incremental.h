@@ -25,6 +25,11 @@ struct IncrementalResult {
   double coverage_incremental = 0.0;      // ... from the selected ones
   change::ObjectCounts objects_complete;  // the demo's change detection (every keyframe)
   change::ObjectCounts objects_incremental;  // ... on the selected keyframes
+  /// The same over the objects' arrivals only (change/evaluation_world.h): the sessions in which
+  /// each moved object changed. Selection skips the images of an object standing as before, so
+  /// its instances in those sessions are what the two runs may differ in by design.
+  change::ArrivalCounts arrivals_complete;
+  change::ArrivalCounts arrivals_incremental;
   std::vector<std::string> files;
   double wall_s = 0.0;
 };

@@ -23,6 +23,11 @@ void writeObjects(std::ostringstream& out, const change::ObjectCounts& o) {
       << ", \"under_segmented\": " << o.under_segmented << "}";
 }
 
+void writeArrivals(std::ostringstream& out, const change::ArrivalCounts& a) {
+  out << "{\"arrivals\": " << a.arrivals << ", \"found\": " << a.found
+      << ", \"recall\": " << a.recall() << "}";
+}
+
 }  // namespace
 
 std::string incrementalJson(const IncrementalResult& r) {
@@ -49,6 +54,10 @@ std::string incrementalJson(const IncrementalResult& r) {
   writeObjects(out, r.objects_complete);
   out << ", \"objects_incremental\": ";
   writeObjects(out, r.objects_incremental);
+  out << ", \"arrivals_complete\": ";
+  writeArrivals(out, r.arrivals_complete);
+  out << ", \"arrivals_incremental\": ";
+  writeArrivals(out, r.arrivals_incremental);
   out << ", \"wall_s\": " << r.wall_s << "}";
   return out.str();
 }

@@ -1,5 +1,6 @@
 #include "change/evaluation_world.h"
 
+#include <algorithm>
 #include <string>
 
 #include "core/error.h"
@@ -30,6 +31,26 @@ WorldEvaluation evaluateWorld(const sim::World& world,
       evaluateStaticMap(static_mesh, staticTruthMesh(world), movedTruthMeshes(world),
                         seenStaticPoints(world, seen, config.min_views), config);
   return result;
+}
+
+ArrivalCounts arrivalCounts(const sim::World& world, const WorldEvaluation& evaluation) {
+  if (evaluation.sessions.size() > static_cast<std::size_t>(world.sessionCount())) {
+    throw InputError("arrivalCounts: an evaluation of " +
+                     std::to_string(evaluation.sessions.size()) + " sessions for a world of " +
+                     std::to_string(world.sessionCount()));
+  }
+  ArrivalCounts counts;
+  for (const SessionObjectEvaluation& session : evaluation.sessions) {
+    if (session.session == 0) continue;  // nothing came before it
+    const std::vector<int> changed = world.session(session.session).changedIds();
+    for (const ObjectMatch& object : session.objects) {
+      if (!object.evaluated) continue;
+      if (!std::binary_search(changed.begin(), changed.end(), object.object_id)) continue;
+      ++counts.arrivals;
+      counts.found += object.found ? 1 : 0;
+    }
+  }
+  return counts;
 }
 
 }  // namespace strata::change
