@@ -147,6 +147,7 @@ DemoReport runDemoPipeline(const DemoOptions& o) {
                        o.quiet, o.select);
     report.incremental_summary = summarizeIncremental(incremental);
     report.incremental_json = incrementalJson(incremental);
+    report.incremental = incremental;
   }
   report.total_s = info.total_s = secondsSince(start);
   writeDemoReport(report, result, files, info, (out / "report.json").string());

@@ -1,10 +1,12 @@
 #pragma once
 // What the multi-session demo measured, as JSON and as a closing paragraph.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "apps/diff_report.h"
+#include "apps/select_incremental.h"
 #include "change/evaluation_world.h"
 #include "eval/accuracy.h"
 
@@ -33,8 +35,9 @@ struct DemoReport {
   std::vector<SessionResult> sessions;
   change::WorldEvaluation evaluation;  // discovered objects and static map against the truth
   double total_s = 0.0;
-  std::string incremental_summary;  // `--incremental` (issue 6), "" without
-  std::string incremental_json;     // the same as a JSON object, "" without
+  std::string incremental_summary;               // `--incremental` (issue 6), "" without
+  std::string incremental_json;                  // the same as a JSON object, "" without
+  std::optional<IncrementalResult> incremental;  // the figures behind both
 };
 
 /// Writes the report as JSON, atomically: the demo's figures, the evaluation and the change
