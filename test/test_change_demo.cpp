@@ -147,6 +147,13 @@ TEST(ChangeDemo, DefaultRoomMeetsTheIssueTargets) {
   EXPECT_EQ(inc.objects_complete.found, e.totals.found);
   EXPECT_GE(inc.coverage_incremental, 0.98 * inc.coverage_complete);
   EXPECT_LT(inc.images.fused, inc.images.total) << "something was left out";
+  std::size_t fused = 0;
+  for (const auto& session : inc.images_per_session) fused += session.fused;
+  EXPECT_EQ(inc.images_per_session.size(), e.sessions.size() - 1);
+  EXPECT_EQ(fused, inc.images.fused);
+  for (const char* key : {"\"per_session\": [{\"fused\": ", "\"arrivals_incremental\": {"}) {
+    EXPECT_NE(report.incremental_json.find(key), std::string::npos) << key;
+  }
   EXPECT_GE(inc.objects_incremental.found + 1, inc.objects_complete.found);
   EXPECT_GE(inc.objects_incremental.precision(), 0.99);
   EXPECT_GE(inc.arrivals_complete.arrivals, 10u) << "the room's objects change every session";

@@ -126,6 +126,7 @@ IncrementalResult runIncremental(vk::Context& context, const sim::World& world,
   r.methods = selection::evaluateMethods(full);
   r.agreement = selection::deviceReferenceAgreement(full);
   r.images = selection::imagesAfterFirstSession(incremental);
+  r.images_per_session = selection::imagesPerSession(incremental);
   r.coverage_complete = full.mapCoverage().ratio();
   r.coverage_incremental = incremental.mapCoverage().ratio();
   writeSessionFiles(incremental, sessions, out_dir, r.files);
@@ -144,13 +145,19 @@ std::string summarizeIncremental(const IncrementalResult& r) {
   const selection::Confusion& ours = r.methods[0].confusion;
   const selection::Confusion& ncc = r.methods[1].confusion;
   const selection::Confusion& hist = r.methods[2].confusion;
+  std::string per_session;
+  for (const selection::ImageUse& use : r.images_per_session) {
+    per_session +=
+        (per_session.empty() ? "" : "/") + std::to_string(std::lround(100 * use.share()));
+  }
   std::snprintf(
       text, sizeof(text),
       "Keyframe selection (recall/precision/accuracy against the simulator's truth, sessions 1+): "
       "ours %.1f/%.1f/%.1f %%, NCC %.1f/%.1f/%.1f %%, histogram %.1f/%.1f/%.1f %%; device and "
       "reference hit masks agree on %.3f %% of samples, surface checks on %.3f %%, %zu decisions "
       "differ. Incremental: fused "
-      "%zu of %zu keyframes after the first session (%.1f %%), surface coverage %.2f %% vs "
+      "%zu of %zu keyframes after the first session (%.1f %%; per session %s %%), surface "
+      "coverage %.2f %% vs "
       "%.2f %% fusing all; change detection on the selected keyframes found %zu of %zu moved "
       "objects (all keyframes: %zu of %zu); counting each moved object only in the sessions in "
       "which it changed, %zu of %zu (all keyframes: %zu of %zu). %.1f s.",
@@ -158,10 +165,10 @@ std::string summarizeIncremental(const IncrementalResult& r) {
       100 * ncc.precision(), 100 * ncc.accuracy(), 100 * hist.recall(), 100 * hist.precision(),
       100 * hist.accuracy(), 100 * r.agreement.hitAgreement(), 100 * r.agreement.surfaceAgreement(),
       r.agreement.decision_mismatches, r.images.fused, r.images.total, 100 * r.images.share(),
-      100 * r.coverage_incremental, 100 * r.coverage_complete, r.objects_incremental.found,
-      r.objects_incremental.moved, r.objects_complete.found, r.objects_complete.moved,
-      r.arrivals_incremental.found, r.arrivals_incremental.arrivals, r.arrivals_complete.found,
-      r.arrivals_complete.arrivals, r.wall_s);
+      per_session.c_str(), 100 * r.coverage_incremental, 100 * r.coverage_complete,
+      r.objects_incremental.found, r.objects_incremental.moved, r.objects_complete.found,
+      r.objects_complete.moved, r.arrivals_incremental.found, r.arrivals_incremental.arrivals,
+      r.arrivals_complete.found, r.arrivals_complete.arrivals, r.wall_s);
   return text;
 }
 

@@ -20,7 +20,8 @@ struct IncrementalResult {
   selection::Thresholds thresholds;
   std::vector<selection::MethodResult> methods;  // ours, ncc, hist
   selection::DeviceReferenceAgreement agreement;
-  selection::ImageUse images;             // keyframes fused after the first session
+  selection::ImageUse images;                           // keyframes fused after the first session
+  std::vector<selection::ImageUse> images_per_session;  // ... per session, 1 on
   double coverage_complete = 0.0;         // surface coverage of the map fused from every keyframe
   double coverage_incremental = 0.0;      // ... from the selected ones
   change::ObjectCounts objects_complete;  // the demo's change detection (every keyframe)

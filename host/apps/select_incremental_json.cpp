@@ -49,7 +49,13 @@ std::string incrementalJson(const IncrementalResult& r) {
       << ", \"decision_mismatches\": " << r.agreement.decision_mismatches
       << "}, \"keyframes_after_first_session\": {\"fused\": " << r.images.fused
       << ", \"total\": " << r.images.total << ", \"share\": " << r.images.share()
-      << "}, \"surface_coverage\": {\"complete\": " << r.coverage_complete
+      << ", \"per_session\": [";
+  for (std::size_t i = 0; i < r.images_per_session.size(); ++i) {
+    const selection::ImageUse& use = r.images_per_session[i];
+    out << (i > 0 ? ", " : "") << "{\"fused\": " << use.fused << ", \"total\": " << use.total
+        << "}";
+  }
+  out << "]}, \"surface_coverage\": {\"complete\": " << r.coverage_complete
       << ", \"incremental\": " << r.coverage_incremental << "}, \"objects_complete\": ";
   writeObjects(out, r.objects_complete);
   out << ", \"objects_incremental\": ";

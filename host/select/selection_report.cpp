@@ -69,12 +69,20 @@ DeviceReferenceAgreement deviceReferenceAgreement(const SelectionLoop& loop) {
   return a;
 }
 
-ImageUse imagesAfterFirstSession(const SelectionLoop& loop) {
-  ImageUse use;
+std::vector<ImageUse> imagesPerSession(const SelectionLoop& loop) {
+  std::vector<ImageUse> out;
   for (const SessionRun& run : loop.sessions()) {
     if (run.session == 0) continue;
-    use.fused += run.fusedCount();
-    use.total += run.fused.size();
+    out.push_back({run.fusedCount(), run.fused.size()});
+  }
+  return out;
+}
+
+ImageUse imagesAfterFirstSession(const SelectionLoop& loop) {
+  ImageUse use;
+  for (const ImageUse& session : imagesPerSession(loop)) {
+    use.fused += session.fused;
+    use.total += session.total;
   }
   return use;
 }

@@ -40,6 +40,8 @@ struct ImageUse {
   double share() const { return total > 0 ? static_cast<double>(fused) / total : 0.0; }
 };
 ImageUse imagesAfterFirstSession(const SelectionLoop& loop);
+/// The same per session, sessions >= 1 in order: the share falls as the map fills.
+std::vector<ImageUse> imagesPerSession(const SelectionLoop& loop);
 
 /// A fixed-width table: method, recall, precision, accuracy, selected.
 std::string formatMethodTable(const std::vector<MethodResult>& results);
