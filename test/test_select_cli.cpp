@@ -89,8 +89,9 @@ TEST_F(SelectCliTest, WritesCsvPlotAndContactSheet) {
   std::vector<std::string> rows;
   for (std::string line; std::getline(with_surface, line);) rows.push_back(line);
   ASSERT_EQ(rows.size(), 1u + 8u);
-  EXPECT_EQ(rows[8].substr(rows[8].size() - 4), ",1,1") << rows[8];
-  EXPECT_EQ(rows[1].substr(rows[1].size() - 4), ",0,0") << rows[1];
+  // triggered, selected, change view (only the demo's incremental loop adds those)
+  EXPECT_EQ(rows[8].substr(rows[8].size() - 6), ",1,1,0") << rows[8];
+  EXPECT_EQ(rows[1].substr(rows[1].size() - 6), ",0,0,0") << rows[1];
   // Coverage demanded beyond what the frames show selects them all.
   o.calibrate_dir.clear();
   o.coverage_threshold = 1.01;
@@ -131,8 +132,10 @@ TEST_F(SelectCliTest, TruthColumnsAndStrip) {
   selection::SelectionConfig config;
   config.smoothing_window = 1;
   config.dilation = 0;
-  const selection::TrajectorySelection s = selection::selectKeyframes(scores, config);
+  selection::TrajectorySelection s = selection::selectKeyframes(scores, config);
   ASSERT_EQ(s.selectedCount(), 1u);
+  s.support.assign(kKeyframes, 0);
+  s.support[3] = 1;  // added as a view for change detection
   std::vector<apps::ScoredKeyframe> keyframes(kKeyframes);
   std::vector<selection::KeyframeTruth> truth(kKeyframes);
   for (std::size_t i = 0; i < kKeyframes; ++i) {
@@ -154,9 +157,11 @@ TEST_F(SelectCliTest, TruthColumnsAndStrip) {
   std::vector<std::string> rows;
   while (std::getline(in, line)) rows.push_back(line);
   ASSERT_EQ(rows.size(), kKeyframes);
-  // ... triggered, selected, then the truth: selected and positive; missed and positive.
-  EXPECT_EQ(rows[2].substr(rows[2].size() - 22), ",1,1,0.00000,0.80000,1") << rows[2];
-  EXPECT_EQ(rows[4].substr(rows[4].size() - 22), ",0,0,0.05000,0.00000,1") << rows[4];
+  // ... triggered, selected, change view, then the truth: selected and positive; missed and
+  // positive; a view for change detection, negative.
+  EXPECT_EQ(rows[2].substr(rows[2].size() - 24), ",1,1,0,0.00000,0.80000,1") << rows[2];
+  EXPECT_EQ(rows[4].substr(rows[4].size() - 24), ",0,0,0,0.05000,0.00000,1") << rows[4];
+  EXPECT_EQ(rows[3].substr(rows[3].size() - 24), ",0,0,1,0.00000,0.00000,0") << rows[3];
   EXPECT_EQ(rows[0].back(), '0');
   truth.pop_back();
   EXPECT_THROW(apps::writeSelectionCsv(csv.string(), keyframes, s, truth), std::invalid_argument);
@@ -175,6 +180,9 @@ TEST_F(SelectCliTest, TruthColumnsAndStrip) {
   };
   EXPECT_EQ(count(plain, 70, 70, 190), 0u);
   EXPECT_GT(count(with_truth, 70, 70, 190), 0u);  // the two positive keyframes' cells
+  EXPECT_GT(count(plain, 235, 150, 40), 0u);      // the change view's cell
+  s.support.clear();
+  EXPECT_EQ(count(apps::renderSelectionPlot(s, config), 235, 150, 40), 0u);
 }
 
 // A bad selection setting of `strata demo --incremental` ends it before any session is simulated.

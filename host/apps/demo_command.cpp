@@ -173,6 +173,9 @@ CLI::App* addDemoCommand(CLI::App& app, DemoOptions& o) {
   demo->add_option("--select-window", o.select.smoothing_window,
                    "With --incremental: moving-average window of the selection, keyframes (odd)")
       ->capture_default_str();
+  demo->add_flag(
+      "--no-change-views", [&o](std::int64_t) { o.select.change_views = false; },
+      "With --incremental: fuse only the selected keyframes, no extra views of vacated places");
   demo->add_option("--select-dilation", o.select.dilation,
                    "With --incremental: keyframes added on each side of a selected one")
       ->capture_default_str();

@@ -102,10 +102,13 @@ IncrementalResult runIncremental(vk::Context& context, const sim::World& world,
                                  const std::string& out_dir, bool quiet,
                                  const IncrementalOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-  const auto configured = [&options](bool incremental) {
+  const auto configured = [&options, &info](bool incremental) {
     selection::LoopConfig c = selection::demoLoopConfig(incremental);
     c.selection.smoothing_window = options.smoothing_window;
     c.selection.dilation = options.dilation;
+    // The change detector trusts a voxel from min_weight frames on (constant weights).
+    c.support.views =
+        options.change_views ? static_cast<int>(std::ceil(info.change.min_weight)) : 0;
     return c;
   };
   selection::SelectionLoop full(context, configured(false));
@@ -127,6 +130,14 @@ IncrementalResult runIncremental(vk::Context& context, const sim::World& world,
   r.agreement = selection::deviceReferenceAgreement(full);
   r.images = selection::imagesAfterFirstSession(incremental);
   r.images_per_session = selection::imagesPerSession(incremental);
+  r.change_views = incremental.config().support.views;
+  for (const selection::SessionRun& run : incremental.sessions()) {
+    if (run.session == 0) continue;
+    r.change_views_added += run.selection.supportCount();
+    r.change_points += run.support.points;
+    r.change_points_short += run.support.unsupported_after;
+    r.fused_confusion.add(selection::confusion(run.fused, run.truth));
+  }
   r.coverage_complete = full.mapCoverage().ratio();
   r.coverage_incremental = incremental.mapCoverage().ratio();
   writeSessionFiles(incremental, sessions, out_dir, r.files);
@@ -141,7 +152,7 @@ IncrementalResult runIncremental(vk::Context& context, const sim::World& world,
 }
 
 std::string summarizeIncremental(const IncrementalResult& r) {
-  char text[1280];
+  char text[1600];
   const selection::Confusion& ours = r.methods[0].confusion;
   const selection::Confusion& ncc = r.methods[1].confusion;
   const selection::Confusion& hist = r.methods[2].confusion;
@@ -156,8 +167,9 @@ std::string summarizeIncremental(const IncrementalResult& r) {
       "ours %.1f/%.1f/%.1f %%, NCC %.1f/%.1f/%.1f %%, histogram %.1f/%.1f/%.1f %%; device and "
       "reference hit masks agree on %.3f %% of samples, surface checks on %.3f %%, %zu decisions "
       "differ. Incremental: fused "
-      "%zu of %zu keyframes after the first session (%.1f %%; per session %s %%), surface "
-      "coverage %.2f %% vs "
+      "%zu of %zu keyframes after the first session (%.1f %%; per session %s %%; %zu of them "
+      "added as views of vacated places for change detection; fused keyframes against the "
+      "truth: %s), surface coverage %.2f %% vs "
       "%.2f %% fusing all; change detection on the selected keyframes found %zu of %zu moved "
       "objects (all keyframes: %zu of %zu); counting each moved object only in the sessions in "
       "which it changed, %zu of %zu (all keyframes: %zu of %zu). %.1f s.",
@@ -165,10 +177,11 @@ std::string summarizeIncremental(const IncrementalResult& r) {
       100 * ncc.precision(), 100 * ncc.accuracy(), 100 * hist.recall(), 100 * hist.precision(),
       100 * hist.accuracy(), 100 * r.agreement.hitAgreement(), 100 * r.agreement.surfaceAgreement(),
       r.agreement.decision_mismatches, r.images.fused, r.images.total, 100 * r.images.share(),
-      per_session.c_str(), 100 * r.coverage_incremental, 100 * r.coverage_complete,
-      r.objects_incremental.found, r.objects_incremental.moved, r.objects_complete.found,
-      r.objects_complete.moved, r.arrivals_incremental.found, r.arrivals_incremental.arrivals,
-      r.arrivals_complete.found, r.arrivals_complete.arrivals, r.wall_s);
+      per_session.c_str(), r.change_views_added, r.fused_confusion.describe().c_str(),
+      100 * r.coverage_incremental, 100 * r.coverage_complete, r.objects_incremental.found,
+      r.objects_incremental.moved, r.objects_complete.found, r.objects_complete.moved,
+      r.arrivals_incremental.found, r.arrivals_incremental.arrivals, r.arrivals_complete.found,
+      r.arrivals_complete.arrivals, r.wall_s);
   return text;
 }
 

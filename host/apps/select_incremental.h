@@ -22,6 +22,15 @@ struct IncrementalResult {
   selection::DeviceReferenceAgreement agreement;
   selection::ImageUse images;                           // keyframes fused after the first session
   std::vector<selection::ImageUse> images_per_session;  // ... per session, 1 on
+  /// Of them, added as views for change detection (select/change_support.h), over the sessions:
+  /// the fused views each vacated point should have (0: step off), keyframes added, vacated points
+  /// of the selected keyframes, and those still short of views after.
+  int change_views = 0;
+  std::size_t change_views_added = 0;
+  std::size_t change_points = 0;
+  std::size_t change_points_short = 0;
+  /// The fused keyframes (selected or added) against the truth.
+  selection::Confusion fused_confusion;
   double coverage_complete = 0.0;         // surface coverage of the map fused from every keyframe
   double coverage_incremental = 0.0;      // ... from the selected ones
   change::ObjectCounts objects_complete;  // the demo's change detection (every keyframe)
@@ -39,6 +48,9 @@ struct IncrementalResult {
 struct IncrementalOptions {
   int smoothing_window = selection::demoLoopConfig(true).selection.smoothing_window;
   int dilation = selection::demoLoopConfig(true).selection.dilation;
+  /// Add the keyframes change detection needs to see vacated places in enough fused frames
+  /// (select/change_support.h).
+  bool change_views = true;
 };
 
 /// `sessions`: the demo's sessions, already fused by its complete run (their seen() surfaces are

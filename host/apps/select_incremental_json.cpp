@@ -55,7 +55,13 @@ std::string incrementalJson(const IncrementalResult& r) {
     out << (i > 0 ? ", " : "") << "{\"fused\": " << use.fused << ", \"total\": " << use.total
         << "}";
   }
-  out << "]}, \"surface_coverage\": {\"complete\": " << r.coverage_complete
+  out << "]}, \"change_views\": {\"views\": " << r.change_views
+      << ", \"added\": " << r.change_views_added << ", \"vacated_points\": " << r.change_points
+      << ", \"short_of_views\": " << r.change_points_short << "}, \"fused_vs_truth\": ";
+  const selection::Confusion& f = r.fused_confusion;
+  out << "{\"recall\": " << f.recall() << ", \"precision\": " << f.precision()
+      << ", \"accuracy\": " << f.accuracy()
+      << "}, \"surface_coverage\": {\"complete\": " << r.coverage_complete
       << ", \"incremental\": " << r.coverage_incremental << "}, \"objects_complete\": ";
   writeObjects(out, r.objects_complete);
   out << ", \"objects_incremental\": ";

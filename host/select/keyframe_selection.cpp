@@ -66,6 +66,10 @@ std::size_t TrajectorySelection::selectedCount() const {
   return static_cast<std::size_t>(std::count(selected.begin(), selected.end(), 1));
 }
 
+std::size_t TrajectorySelection::supportCount() const {
+  return static_cast<std::size_t>(std::count(support.begin(), support.end(), 1));
+}
+
 std::vector<double> movingAverage(const std::vector<double>& values, int window) {
   const int n = static_cast<int>(values.size());
   const int half = window / 2;

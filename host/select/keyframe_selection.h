@@ -58,7 +58,11 @@ struct TrajectorySelection {
   std::vector<double> similarity;       // smoothed baseline similarity (ncc or hist; 0 for ours)
   std::vector<std::uint8_t> triggered;  // crossed a threshold (before dilation)
   std::vector<std::uint8_t> selected;   // after dilation
+  /// Keyframes added as views for change detection (change_support.h), not selected on their own
+  /// metrics; empty where that step did not run. What is fused: selected or support.
+  std::vector<std::uint8_t> support;
   std::size_t selectedCount() const;
+  std::size_t supportCount() const;
 };
 
 /// Centred moving average; at the ends the window shrinks to the keyframes that exist.

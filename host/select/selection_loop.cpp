@@ -36,6 +36,8 @@ LoopConfig demoLoopConfig(bool incremental) {
   c.incremental = incremental;
   c.with_truth = true;
   c.with_reference = !incremental;
+  c.support.views = 3;  // the demo's change detector: min weight 3 with constant weights
+  c.support.max_depth_m = c.map.max_depth_m;
   return c;
 }
 
@@ -51,6 +53,7 @@ SelectionLoop::SelectionLoop(vk::Context& context, const LoopConfig& config)
       reference_thresholds_(config.selection.thresholds) {
   config_.selection.validate();
   config_.truth.validate();
+  config_.support.validate();
 }
 
 void SelectionLoop::recordTruth(const sim::SimSessionDataset& session, std::size_t index,
@@ -78,17 +81,20 @@ void SelectionLoop::recordHistory(const sim::SimSessionDataset& session, const S
   session_surface_W_.clear();
 }
 
-void SelectionLoop::scoreSession(const sim::SimSessionDataset& session,
-                                 const std::vector<RgbdFrame>& frames, SessionRun& run,
-                                 const std::function<void(std::size_t)>& progress) {
+std::vector<std::vector<Eigen::Vector3f>> SelectionLoop::scoreSession(
+    const sim::SimSessionDataset& session, const std::vector<RgbdFrame>& frames, SessionRun& run,
+    const std::function<void(std::size_t)>& progress) {
+  std::vector<std::vector<Eigen::Vector3f>> vacated_points_W;
   TsdfMap map(config_.map);
   if (config_.with_reference) fusion_.map().download(map);
   for (std::size_t i = 0; i < frames.size(); ++i) {
     double device_ms = 0.0;
     SampleRaycast samples;
-    run.scores.push_back(scorer_.score(fusion_.map(), frames[i], session.intrinsics(), &device_ms,
-                                       config_.with_reference ? &samples : nullptr));
+    run.scores.push_back(
+        scorer_.score(fusion_.map(), frames[i], session.intrinsics(), &device_ms, &samples));
     run.score_device_ms += device_ms;
+    vacated_points_W.push_back(
+        vacatedPoints(samples, frames[i], session.intrinsics(), config_.support));
     if (config_.with_reference) {
       SampleRaycast reference;
       run.reference_scores.push_back(
@@ -98,6 +104,7 @@ void SelectionLoop::scoreSession(const sim::SimSessionDataset& session,
     }
     if (progress) progress(i + 1);
   }
+  return vacated_points_W;
 }
 
 const SessionRun& SelectionLoop::addSession(const sim::SimSessionDataset& session,
@@ -123,13 +130,19 @@ const SessionRun& SelectionLoop::addSession(const sim::SimSessionDataset& sessio
     };
   };
   if (run.session > 0) {
-    scoreSession(session, frames, run, step(0));
+    const auto vacated_points_W = scoreSession(session, frames, run, step(0));
     SelectionConfig selection = config_.selection;
     selection.thresholds = thresholds_;
     run.selection = selectKeyframes(run.scores, selection);
+    run.support = supportViews(vacated_points_W, frames, session.intrinsics(),
+                               run.selection.selected, config_.support);
+    run.selection.support = run.support.added;
   }
   const bool fuse_all = run.session == 0 || !config_.incremental;
   run.fused = fuse_all ? std::vector<std::uint8_t>(n, 1) : run.selection.selected;
+  if (!fuse_all) {
+    for (std::size_t i = 0; i < n; ++i) run.fused[i] |= run.support.added.at(i);
+  }
   for (std::size_t i = 0; i < n; ++i) {
     if (run.fused[i]) fusion_.integrate(frames[i], session.intrinsics());
     if (progress) progress(n + i + 1);

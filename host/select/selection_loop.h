@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "kernels/device_fusion.h"
+#include "select/change_support.h"
 #include "select/keyframe_scorer.h"
 #include "select/keyframe_selection.h"
 #include "select/map_history.h"
@@ -34,6 +35,9 @@ struct LoopConfig {
   /// Also score every keyframe with the host reference (scoreKeyframeReference).
   bool with_reference = false;
   TruthConfig truth;
+  /// Views of vacated places for change detection, added to the selection of sessions >= 1
+  /// (views 0: none; demoLoopConfig: 3, the demo's change detector's min weight).
+  SupportConfig support{0};
 };
 
 struct SessionRun {
@@ -44,6 +48,7 @@ struct SessionRun {
   std::vector<SampleRaycast> reference_samples;
   std::vector<KeyframeTruth> truth;  // with_truth, sessions >= 1
   TrajectorySelection selection;     // sessions >= 1
+  SupportResult support;             // sessions >= 1: keyframes added as change-detection views
   std::vector<std::uint8_t> fused;   // keyframes fused into the map
   double score_device_ms = 0.0;      // raycast device time, summed
   std::size_t fusedCount() const;
@@ -81,8 +86,10 @@ class SelectionLoop {
   const LoopConfig& config() const { return config_; }
 
  private:
-  void scoreSession(const sim::SimSessionDataset& session, const std::vector<RgbdFrame>& frames,
-                    SessionRun& run, const std::function<void(std::size_t)>& progress);
+  /// Scores every keyframe; returns each keyframe's vacated points (change_support.h).
+  std::vector<std::vector<Eigen::Vector3f>> scoreSession(
+      const sim::SimSessionDataset& session, const std::vector<RgbdFrame>& frames, SessionRun& run,
+      const std::function<void(std::size_t)>& progress);
   void recordTruth(const sim::SimSessionDataset& session, std::size_t index,
                    const sim::SimulatedFrame& frame, const TsdfMap& map, SessionRun& run);
   /// After a session's fusion: its world and what its fused keyframes saw join history_.

@@ -1,0 +1,134 @@
+#include "select/change_support.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+#include "kernels/camera_math.h"
+
+namespace strata::selection {
+
+void SupportConfig::validate() const {
+  if (views < 0) throw InputError("support views must be >= 0, got " + std::to_string(views));
+  if (min_points < 1) {
+    throw InputError("support min_points must be >= 1, got " + std::to_string(min_points));
+  }
+  if (!(depth_tolerance_m > 0.0f) || !std::isfinite(depth_tolerance_m)) {
+    throw InputError("support depth_tolerance_m must be a positive number");
+  }
+  if (!(max_depth_m > depth_tolerance_m) || !std::isfinite(max_depth_m)) {
+    throw InputError("support max_depth_m must be a number above depth_tolerance_m");
+  }
+}
+
+namespace {
+
+/// passesPoint with the frame's T_C_W computed once by the caller.
+bool passes(const RgbdFrame& frame, const Eigen::Isometry3f& T_C_W, const CameraIntrinsics& k,
+            const Eigen::Vector3f& point_W, const SupportConfig& config) {
+  const Eigen::Vector3f p_C = T_C_W * point_W;
+  if (!(p_C.z() > 0.0f)) return false;
+  const int u = static_cast<int>(std::lround(k.fx_px * p_C.x() / p_C.z() + k.cx_px));
+  const int v = static_cast<int>(std::lround(k.fy_px * p_C.y() / p_C.z() + k.cy_px));
+  if (u < 0 || v < 0 || u >= k.width_px || v >= k.height_px) return false;
+  const float measured_m = frame.depth.at(u, v);
+  return measured_m > p_C.z() + config.depth_tolerance_m && measured_m <= config.max_depth_m;
+}
+
+}  // namespace
+
+std::vector<Eigen::Vector3f> vacatedPoints(const SampleRaycast& samples, const RgbdFrame& frame,
+                                           const CameraIntrinsics& k, const SupportConfig& config) {
+  const SampleGrid& grid = samples.grid;
+  const Eigen::Vector4f K(k.fx_px, k.fy_px, k.cx_px, k.cy_px);
+  const Eigen::Isometry3f T_W_C = frame.T_W_C.cast<float>();
+  std::vector<Eigen::Vector3f> points_W;
+  for (int gy = 0; gy < grid.height; ++gy) {
+    for (int gx = 0; gx < grid.width; ++gx) {
+      const std::size_t s = static_cast<std::size_t>(gy) * grid.width + gx;
+      if (!samples.hit.at(s)) continue;
+      const int u = grid.pixelU(gx), v = grid.pixelV(gy);
+      const float measured_m = frame.depth.at(u, v);
+      const float rendered_m = samples.depth_m.at(s);
+      // No depth, not beyond the map's surface, or beyond what fusion uses.
+      if (!(measured_m > rendered_m + config.depth_tolerance_m)) continue;
+      if (measured_m > config.max_depth_m) continue;
+      const Eigen::Vector3f ray_C = pixelRay(static_cast<float>(u), static_cast<float>(v), K);
+      points_W.push_back(T_W_C * Eigen::Vector3f(ray_C * rendered_m));  // the map's surface
+    }
+  }
+  return points_W;
+}
+
+bool passesPoint(const RgbdFrame& frame, const CameraIntrinsics& k, const Eigen::Vector3f& point_W,
+                 const SupportConfig& config) {
+  return passes(frame, frame.T_W_C.inverse().cast<float>(), k, point_W, config);
+}
+
+namespace {
+
+/// passed[k][p]: a ray of keyframe k passes point p.
+std::vector<std::vector<std::uint8_t>> visibility(const std::vector<Eigen::Vector3f>& points_W,
+                                                  const std::vector<RgbdFrame>& frames,
+                                                  const CameraIntrinsics& intrinsics,
+                                                  const SupportConfig& config) {
+  std::vector<std::vector<std::uint8_t>> passed(frames.size());
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    const Eigen::Isometry3f T_C_W = frames[k].T_W_C.inverse().cast<float>();
+    passed[k].resize(points_W.size());
+    for (std::size_t p = 0; p < points_W.size(); ++p) {
+      passed[k][p] = passes(frames[k], T_C_W, intrinsics, points_W[p], config) ? 1 : 0;
+    }
+  }
+  return passed;
+}
+
+std::size_t countUnsupported(const std::vector<int>& views, int needed) {
+  return static_cast<std::size_t>(
+      std::count_if(views.begin(), views.end(), [needed](int n) { return n < needed; }));
+}
+
+}  // namespace
+
+SupportResult supportViews(const std::vector<std::vector<Eigen::Vector3f>>& vacated_points,
+                           const std::vector<RgbdFrame>& frames, const CameraIntrinsics& intrinsics,
+                           const std::vector<std::uint8_t>& selected, const SupportConfig& config) {
+  config.validate();
+  if (vacated_points.size() != frames.size() || selected.size() != frames.size()) {
+    throw InputError("supportViews: vacated points, frames and selection differ in length");
+  }
+  SupportResult r;
+  r.added.assign(frames.size(), 0);
+  if (config.views == 0) return r;
+  std::vector<Eigen::Vector3f> points_W;
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    if (selected[k])
+      points_W.insert(points_W.end(), vacated_points[k].begin(), vacated_points[k].end());
+  }
+  r.points = points_W.size();
+  const auto passed = visibility(points_W, frames, intrinsics, config);
+  std::vector<int> views(points_W.size(), 0);
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    if (!selected[k]) continue;
+    for (std::size_t p = 0; p < points_W.size(); ++p) views[p] += passed[k][p];
+  }
+  r.unsupported_before = countUnsupported(views, config.views);
+  for (;;) {
+    std::size_t best = frames.size();
+    int best_gain = config.min_points - 1;
+    for (std::size_t k = 0; k < frames.size(); ++k) {
+      if (selected[k] || r.added[k]) continue;
+      int gain = 0;
+      for (std::size_t p = 0; p < points_W.size(); ++p)
+        gain += passed[k][p] && views[p] < config.views;
+      if (gain > best_gain) best = k, best_gain = gain;
+    }
+    if (best == frames.size()) break;
+    r.added[best] = 1;
+    for (std::size_t p = 0; p < points_W.size(); ++p) views[p] += passed[best][p];
+  }
+  r.unsupported_after = countUnsupported(views, config.views);
+  return r;
+}
+
+}  // namespace strata::selection

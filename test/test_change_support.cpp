@@ -1,0 +1,142 @@
+// Views of vacated places for change detection (select/change_support.h): the vacated points of a
+// keyframe's samples, which keyframes' rays pass a point, the greedy choice of the keyframes that
+// give points short of views their rays, and bad input. Constructed frames: cameras looking along
+// +z at a wall 2 m away, side by side along x.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/error.h"
+#include "select/change_support.h"
+
+namespace strata::selection {
+namespace {
+
+CameraIntrinsics camera() {
+  CameraIntrinsics k;
+  k.width_px = 160;
+  k.height_px = 120;
+  k.fx_px = k.fy_px = 100.0f;
+  k.cx_px = 79.5f;
+  k.cy_px = 59.5f;
+  return k;
+}
+
+/// A camera at x = `x_m` looking along +z at a wall at z = 2 m (or turned away from it).
+RgbdFrame wallFrame(double x_m, bool facing_wall = true) {
+  const CameraIntrinsics k = camera();
+  RgbdFrame f;
+  f.depth = DepthImage(k.width_px, k.height_px, 2.0f);
+  f.T_W_C = Eigen::Isometry3d::Identity();
+  f.T_W_C.translation() = Eigen::Vector3d(x_m, 0.0, 0.0);
+  if (!facing_wall) f.T_W_C.linear() = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitY()).matrix();
+  return f;
+}
+
+/// `n` points 0.5 m in front of the wall around x = `x_m`: where a removed object stood.
+std::vector<Eigen::Vector3f> vacated(float x_m, int n) {
+  std::vector<Eigen::Vector3f> points;
+  for (int i = 0; i < n; ++i) points.emplace_back(x_m + 0.01f * (i % 10), 0.01f * (i / 10), 1.5f);
+  return points;
+}
+
+TEST(ChangeSupport, VacatedPointsAreTheMapsSurfaceWhereTheKeyframeSeesBeyondIt) {
+  const SupportConfig config;
+  const RgbdFrame frame = wallFrame(0.0);  // measures the wall at 2 m everywhere
+  SampleRaycast samples;
+  samples.grid = SampleGrid::of(camera(), 40);  // 4 x 3 samples
+  const std::size_t n = samples.grid.count();
+  samples.hit.assign(n, 1);
+  samples.depth_m.assign(n, 2.0f);  // the map holds the wall ...
+  samples.depth_m[5] = 1.5f;        // ... and, on two samples, an object in front of it
+  samples.depth_m[6] = 1.95f;       // (this one within the tolerance: noise, not vacated)
+  samples.hit[7] = 0, samples.depth_m[7] = 0.0f;  // a miss is new space, not a vacated place
+  const std::vector<Eigen::Vector3f> points = vacatedPoints(samples, frame, camera(), config);
+  ASSERT_EQ(points.size(), 1u);
+  EXPECT_NEAR(points[0].z(), 1.5f, 1e-5f);  // on the map's surface, on sample 5's ray
+  const SampleGrid& g = samples.grid;
+  const float u = static_cast<float>(g.pixelU(5 % g.width)), v = g.pixelV(5 / g.width);
+  EXPECT_NEAR(points[0].x(), (u - camera().cx_px) / camera().fx_px * 1.5f, 1e-5f);
+  EXPECT_NEAR(points[0].y(), (v - camera().cy_px) / camera().fy_px * 1.5f, 1e-5f);
+  EXPECT_TRUE(passesPoint(frame, camera(), points[0], config));
+}
+
+TEST(ChangeSupport, AKeyframePassesAPointWhenItMeasuresBeyondIt) {
+  const SupportConfig config;
+  const RgbdFrame frame = wallFrame(0.0);
+  EXPECT_TRUE(passesPoint(frame, camera(), {0.1f, 0.1f, 1.5f}, config));    // wall behind it
+  EXPECT_FALSE(passesPoint(frame, camera(), {0.1f, 0.1f, 1.95f}, config));  // within tolerance
+  EXPECT_FALSE(passesPoint(frame, camera(), {0.1f, 0.1f, 2.5f}, config));   // behind the wall
+  EXPECT_FALSE(passesPoint(frame, camera(), {3.0f, 0.0f, 1.5f}, config));   // outside the image
+  EXPECT_FALSE(passesPoint(frame, camera(), {0.0f, 0.0f, -1.5f}, config));  // behind the camera
+  RgbdFrame none = wallFrame(0.0);
+  none.depth = DepthImage(camera().width_px, camera().height_px, 0.0f);  // no depth
+  EXPECT_FALSE(passesPoint(none, camera(), {0.1f, 0.1f, 1.5f}, config));
+  RgbdFrame far = wallFrame(0.0);
+  far.depth = DepthImage(camera().width_px, camera().height_px, 7.0f);  // beyond fusion's range
+  EXPECT_FALSE(passesPoint(far, camera(), {0.1f, 0.1f, 1.5f}, config));
+}
+
+TEST(ChangeSupport, AddsTheKeyframesThatPassTheVacatedPlaceUntilItHasItsViews) {
+  // Keyframe 0 (selected) saw 100 vacated points at x = 0; keyframes 1-3 pass them too, 4 and 5
+  // look the other way.
+  const std::vector<RgbdFrame> frames = {wallFrame(0.0),        wallFrame(0.1),
+                                         wallFrame(0.2),        wallFrame(0.3),
+                                         wallFrame(0.0, false), wallFrame(0.1, false)};
+  std::vector<std::vector<Eigen::Vector3f>> points(frames.size());
+  points[0] = vacated(0.0f, 100);
+  points[2] = vacated(0.5f, 100);  // not selected: its points are not the selection's
+  const std::vector<std::uint8_t> selected = {1, 0, 0, 0, 0, 0};
+  SupportConfig config;
+  config.views = 3;
+  const SupportResult r = supportViews(points, frames, camera(), selected, config);
+  EXPECT_EQ(r.points, 100u);
+  EXPECT_EQ(r.unsupported_before, 100u);
+  EXPECT_EQ(r.unsupported_after, 0u);
+  int added = 0;
+  for (auto a : r.added) added += a;
+  EXPECT_EQ(added, 2);  // two more views, no more
+  EXPECT_EQ(r.added[0], 0);
+  EXPECT_EQ(r.added[4] + r.added[5], 0);
+
+  config.views = 5;  // only three keyframes besides keyframe 0 can pass it
+  const SupportResult all = supportViews(points, frames, camera(), selected, config);
+  EXPECT_EQ(all.added, (std::vector<std::uint8_t>{0, 1, 1, 1, 0, 0}));
+  EXPECT_EQ(all.unsupported_after, 100u);
+
+  config.views = 3;
+  config.min_points = 101;  // no keyframe passes enough points
+  const SupportResult none = supportViews(points, frames, camera(), selected, config);
+  EXPECT_EQ(none.added, std::vector<std::uint8_t>(frames.size(), 0));
+  EXPECT_EQ(none.unsupported_after, 100u);
+
+  config.min_points = 30;
+  config.views = 0;  // off
+  const SupportResult off = supportViews(points, frames, camera(), selected, config);
+  EXPECT_EQ(off.added, std::vector<std::uint8_t>(frames.size(), 0));
+}
+
+TEST(ChangeSupport, BadInputNamesTheProblem) {
+  const std::vector<RgbdFrame> frames = {wallFrame(0.0)};
+  SupportConfig config;
+  try {
+    supportViews({}, frames, camera(), {1}, config);
+    ADD_FAILURE() << "lengths differ";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("differ in length"), std::string::npos) << e.what();
+  }
+  config.views = -1;
+  EXPECT_THROW(config.validate(), InputError);
+  config = {};
+  config.min_points = 0;
+  EXPECT_THROW(config.validate(), InputError);
+  config = {};
+  config.depth_tolerance_m = std::nanf("");
+  EXPECT_THROW(config.validate(), InputError);
+  config = {};
+  config.max_depth_m = 0.05f;
+  EXPECT_THROW(config.validate(), InputError);
+}
+
+}  // namespace
+}  // namespace strata::selection
