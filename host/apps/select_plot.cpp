@@ -139,7 +139,7 @@ ColorImage renderSelectionPlot(const selection::TrajectorySelection& s,
   char caption[160];
   if (s.supportCount() > 0) {
     std::snprintf(caption, sizeof(caption),
-                  "%s: %zu OF %zu KEYFRAMES SELECTED (GREEN) + %zu VIEWS OF CHANGE (ORANGE)",
+                  "%s: %zu OF %zu SELECTED (GREEN) + %zu FOR CHANGE DETECTION (ORANGE)",
                   selection::methodName(config.method), s.selectedCount(), n, s.supportCount());
   } else {
     std::snprintf(caption, sizeof(caption), "%s: %zu OF %zu KEYFRAMES SELECTED (GREEN)",

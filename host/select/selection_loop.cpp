@@ -134,9 +134,11 @@ const SessionRun& SelectionLoop::addSession(const sim::SimSessionDataset& sessio
     SelectionConfig selection = config_.selection;
     selection.thresholds = thresholds_;
     run.selection = selectKeyframes(run.scores, selection);
-    run.support = supportViews(vacated_points_W, frames, session.intrinsics(),
-                               run.selection.selected, config_.support);
-    run.selection.support = run.support.added;
+    if (config_.incremental) {  // the complete run fuses every keyframe anyway
+      run.support = supportViews(vacated_points_W, frames, session.intrinsics(),
+                                 run.selection.selected, config_.support);
+      run.selection.support = run.support.added;
+    }
   }
   const bool fuse_all = run.session == 0 || !config_.incremental;
   run.fused = fuse_all ? std::vector<std::uint8_t>(n, 1) : run.selection.selected;

@@ -48,9 +48,9 @@ struct SessionRun {
   std::vector<SampleRaycast> reference_samples;
   std::vector<KeyframeTruth> truth;  // with_truth, sessions >= 1
   TrajectorySelection selection;     // sessions >= 1
-  SupportResult support;             // sessions >= 1: keyframes added as change-detection views
-  std::vector<std::uint8_t> fused;   // keyframes fused into the map
-  double score_device_ms = 0.0;      // raycast device time, summed
+  SupportResult support;  // incremental, sessions >= 1: keyframes added as change-detection views
+  std::vector<std::uint8_t> fused;  // keyframes fused into the map
+  double score_device_ms = 0.0;     // raycast device time, summed
   std::size_t fusedCount() const;
 };
 
