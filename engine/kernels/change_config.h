@@ -1,6 +1,8 @@
 #pragma once
 // Parameters and statistics of multi-session change detection (issue 5, DESIGN item 2). The rules
 // they parameterise are in change_rules.h.
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 
 namespace strata::change {
@@ -27,6 +29,9 @@ struct ChangeConfig {
 
   /// Throws InputError naming the bad field.
   void validate(float voxel_size_m) const;
+
+  /// Fused frames that must see a voxel before it counts, with constant weights (one per frame).
+  int minFrames() const { return std::max(1, static_cast<int>(std::ceil(min_weight))); }
 
   /// The same thresholds for sessions fused from one frame in every `recorded_per_fused` frames
   /// of their recording (a stride, or frames spread over a path): each fused frame stands for

@@ -83,7 +83,7 @@ change::WorldEvaluation evaluate(const sim::World& world, const DiffResult& resu
   }
   change::EvaluationConfig eval_config;
   // Constant weights: a voxel is observed from min_weight frames on; judge the truth alike.
-  eval_config.min_views = std::max(1, static_cast<int>(std::ceil(config.min_weight)));
+  eval_config.min_views = config.minFrames();
   return change::evaluateWorld(world, objects, result.static_mesh, seen, eval_config);
 }
 

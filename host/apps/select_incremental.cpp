@@ -62,7 +62,7 @@ change::WorldEvaluation detectOnSelected(vk::Context& context, const sim::World&
     seen.push_back(&sessions[s]->seen());  // what every keyframe saw: the same truth as complete
   }
   change::EvaluationConfig eval_config;
-  eval_config.min_views = std::max(1, static_cast<int>(std::ceil(info.change.min_weight)));
+  eval_config.min_views = info.change.minFrames();
   return change::evaluateWorld(world, objects, result.static_mesh, seen, eval_config);
 }
 
@@ -106,9 +106,7 @@ IncrementalResult runIncremental(vk::Context& context, const sim::World& world,
     selection::LoopConfig c = selection::demoLoopConfig(incremental);
     c.selection.smoothing_window = options.smoothing_window;
     c.selection.dilation = options.dilation;
-    // The change detector trusts a voxel from min_weight frames on (constant weights).
-    c.support.views =
-        options.change_views ? static_cast<int>(std::ceil(info.change.min_weight)) : 0;
+    c.support.views = options.change_views ? info.change.minFrames() : 0;
     return c;
   };
   selection::SelectionLoop full(context, configured(false));
@@ -134,8 +132,8 @@ IncrementalResult runIncremental(vk::Context& context, const sim::World& world,
   for (const selection::SessionRun& run : incremental.sessions()) {
     if (run.session == 0) continue;
     r.change_views_added += run.selection.supportCount();
-    r.change_points += run.support.points;
-    r.change_points_short += run.support.unsupported_after;
+    r.vacated_points += run.support.points;
+    r.vacated_points_short += run.support.unsupported_after;
     r.fused_confusion.add(selection::confusion(run.fused, run.truth));
   }
   r.coverage_complete = full.mapCoverage().ratio();

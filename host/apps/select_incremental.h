@@ -27,8 +27,8 @@ struct IncrementalResult {
   /// of the selected keyframes, and those still short of views after.
   int change_views = 0;
   std::size_t change_views_added = 0;
-  std::size_t change_points = 0;
-  std::size_t change_points_short = 0;
+  std::size_t vacated_points = 0;
+  std::size_t vacated_points_short = 0;
   /// The fused keyframes (selected or added) against the truth.
   selection::Confusion fused_confusion;
   double coverage_complete = 0.0;         // surface coverage of the map fused from every keyframe

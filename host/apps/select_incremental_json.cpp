@@ -56,8 +56,8 @@ std::string incrementalJson(const IncrementalResult& r) {
         << "}";
   }
   out << "]}, \"change_views\": {\"views\": " << r.change_views
-      << ", \"added\": " << r.change_views_added << ", \"vacated_points\": " << r.change_points
-      << ", \"short_of_views\": " << r.change_points_short << "}, \"fused_vs_truth\": ";
+      << ", \"added\": " << r.change_views_added << ", \"vacated_points\": " << r.vacated_points
+      << ", \"short_of_views\": " << r.vacated_points_short << "}, \"fused_vs_truth\": ";
   const selection::Confusion& f = r.fused_confusion;
   out << "{\"recall\": " << f.recall() << ", \"precision\": " << f.precision()
       << ", \"accuracy\": " << f.accuracy()

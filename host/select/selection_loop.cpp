@@ -83,7 +83,7 @@ void SelectionLoop::recordHistory(const sim::SimSessionDataset& session, const S
 
 std::vector<std::vector<Eigen::Vector3f>> SelectionLoop::scoreSession(
     const sim::SimSessionDataset& session, const std::vector<RgbdFrame>& frames, SessionRun& run,
-    const std::function<void(std::size_t)>& progress) {
+    bool collect_vacated, const std::function<void(std::size_t)>& progress) {
   std::vector<std::vector<Eigen::Vector3f>> vacated_points_W;
   TsdfMap map(config_.map);
   if (config_.with_reference) fusion_.map().download(map);
@@ -93,8 +93,10 @@ std::vector<std::vector<Eigen::Vector3f>> SelectionLoop::scoreSession(
     run.scores.push_back(
         scorer_.score(fusion_.map(), frames[i], session.intrinsics(), &device_ms, &samples));
     run.score_device_ms += device_ms;
-    vacated_points_W.push_back(
-        vacatedPoints(samples, frames[i], session.intrinsics(), config_.support));
+    if (collect_vacated) {
+      vacated_points_W.push_back(
+          vacatedPoints(samples, frames[i], session.intrinsics(), config_.support));
+    }
     if (config_.with_reference) {
       SampleRaycast reference;
       run.reference_scores.push_back(
@@ -130,27 +132,31 @@ const SessionRun& SelectionLoop::addSession(const sim::SimSessionDataset& sessio
     };
   };
   if (run.session > 0) {
-    const auto vacated_points_W = scoreSession(session, frames, run, step(0));
+    // The complete run fuses every keyframe anyway: no views to add.
+    const bool add_views = config_.incremental && config_.support.views > 0;
+    const auto vacated_points_W = scoreSession(session, frames, run, add_views, step(0));
     SelectionConfig selection = config_.selection;
     selection.thresholds = thresholds_;
     run.selection = selectKeyframes(run.scores, selection);
-    if (config_.incremental) {  // the complete run fuses every keyframe anyway
+    if (add_views) {
       run.support = supportViews(vacated_points_W, frames, session.intrinsics(),
                                  run.selection.selected, config_.support);
-      run.selection.support = run.support.added;
+      run.selection.support = std::move(run.support.added);  // its one home
     }
   }
   const bool fuse_all = run.session == 0 || !config_.incremental;
   run.fused = fuse_all ? std::vector<std::uint8_t>(n, 1) : run.selection.selected;
   if (!fuse_all) {
-    for (std::size_t i = 0; i < n; ++i) run.fused[i] |= run.support.added.at(i);
+    for (std::size_t i = 0; i < run.selection.support.size(); ++i) {
+      run.fused[i] |= run.selection.support[i];
+    }
   }
   for (std::size_t i = 0; i < n; ++i) {
     if (run.fused[i]) fusion_.integrate(frames[i], session.intrinsics());
     if (progress) progress(n + i + 1);
   }
   if (run.session == 0) {
-    scoreSession(session, frames, run, {});
+    scoreSession(session, frames, run, false, {});
     if (config_.auto_thresholds) {
       const int window = config_.selection.smoothing_window;
       thresholds_ = autoThresholds(run.scores, window, config_.selection.thresholds);

@@ -48,7 +48,9 @@ struct SessionRun {
   std::vector<SampleRaycast> reference_samples;
   std::vector<KeyframeTruth> truth;  // with_truth, sessions >= 1
   TrajectorySelection selection;     // sessions >= 1
-  SupportResult support;  // incremental, sessions >= 1: keyframes added as change-detection views
+  /// Incremental, sessions >= 1: the counts of the views-of-vacated-places step (its added flags
+  /// are selection.support).
+  SupportResult support;
   std::vector<std::uint8_t> fused;  // keyframes fused into the map
   double score_device_ms = 0.0;     // raycast device time, summed
   std::size_t fusedCount() const;
@@ -86,10 +88,11 @@ class SelectionLoop {
   const LoopConfig& config() const { return config_; }
 
  private:
-  /// Scores every keyframe; returns each keyframe's vacated points (change_support.h).
+  /// Scores every keyframe; with `collect_vacated`, returns each keyframe's vacated points
+  /// (change_support.h), else nothing.
   std::vector<std::vector<Eigen::Vector3f>> scoreSession(
       const sim::SimSessionDataset& session, const std::vector<RgbdFrame>& frames, SessionRun& run,
-      const std::function<void(std::size_t)>& progress);
+      bool collect_vacated, const std::function<void(std::size_t)>& progress);
   void recordTruth(const sim::SimSessionDataset& session, std::size_t index,
                    const sim::SimulatedFrame& frame, const TsdfMap& map, SessionRun& run);
   /// After a session's fusion: its world and what its fused keyframes saw join history_.
