@@ -151,13 +151,24 @@ TEST(ChangeDemo, DefaultRoomMeetsTheIssueTargets) {
   for (const auto& session : inc.images_per_session) fused += session.fused;
   EXPECT_EQ(inc.images_per_session.size(), e.sessions.size() - 1);
   EXPECT_EQ(fused, inc.images.fused);
-  for (const char* key : {"\"per_session\": [{\"fused\": ", "\"arrivals_incremental\": {"}) {
+  for (const char* key : {"\"per_session\": [{\"fused\": ", "\"arrivals_incremental\": {",
+                          "\"instances\": [{\"session\": ", "\"carried_forward\": {"}) {
     EXPECT_NE(report.incremental_json.find(key), std::string::npos) << key;
   }
   EXPECT_GE(inc.objects_incremental.found + 1, inc.objects_complete.found);
   EXPECT_GE(inc.objects_incremental.precision(), 0.99);
   EXPECT_GE(inc.arrivals_complete.arrivals, 10u) << "the room's objects change every session";
   EXPECT_GE(inc.arrivals_incremental.found + 1, inc.arrivals_complete.found);
+  // One row per evaluated moved object of every session, and the counts agree with the rows.
+  EXPECT_EQ(inc.instances.size(), inc.objects_complete.moved);
+  std::size_t found_complete = 0, found_incremental = 0;
+  for (const apps::InstanceOutcome& o : inc.instances) {
+    found_complete += o.complete.found;
+    found_incremental += o.incremental.found;
+  }
+  EXPECT_EQ(found_complete, inc.objects_complete.found);
+  EXPECT_EQ(found_incremental, inc.objects_incremental.found);
+  EXPECT_GT(inc.carried.voxels, 0u) << "confirmed places carry observations forward";
   fs::remove_all(options.out_dir);
 }
 

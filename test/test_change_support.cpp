@@ -1,6 +1,7 @@
 // Views of vacated places for change detection (select/change_support.h): the vacated points of a
 // keyframe's samples, which keyframes' rays pass a point, the greedy choice of the keyframes that
-// give points short of views their rays, and bad input. Constructed frames: cameras looking along
+// give points short of views their rays, and bad input. Also the points a keyframe confirmed
+// (select/confirmed_points.h). Constructed frames: cameras looking along
 // +z at a wall 2 m away, side by side along x.
 #include <gtest/gtest.h>
 
@@ -8,6 +9,7 @@
 
 #include "core/error.h"
 #include "select/change_support.h"
+#include "select/confirmed_points.h"
 
 namespace strata::selection {
 namespace {
@@ -89,6 +91,7 @@ TEST(ChangeSupport, AddsTheKeyframesThatPassTheVacatedPlaceUntilItHasItsViews) {
   const std::vector<std::uint8_t> selected = {1, 0, 0, 0, 0, 0};
   SupportConfig config;
   config.views = 3;
+  config.all_keyframes = false;
   const SupportResult r = supportViews(points, frames, camera(), selected, config);
   EXPECT_EQ(r.points, 100u);
   EXPECT_EQ(r.unsupported_before, 100u);
@@ -116,6 +119,33 @@ TEST(ChangeSupport, AddsTheKeyframesThatPassTheVacatedPlaceUntilItHasItsViews) {
   EXPECT_EQ(off.added, std::vector<std::uint8_t>(frames.size(), 0));
 }
 
+TEST(ChangeSupport, WithAllKeyframesTheVacatedPointsOfUnselectedOnesCountToo) {
+  // As above, but keyframe 2's points (a place no selected keyframe measured beyond) count: the
+  // views added then serve both places.
+  const std::vector<RgbdFrame> frames = {wallFrame(0.0), wallFrame(0.1), wallFrame(0.2),
+                                         wallFrame(0.3), wallFrame(0.0, false)};
+  std::vector<std::vector<Eigen::Vector3f>> points(frames.size());
+  points[0] = vacated(0.0f, 100);
+  points[2] = vacated(0.5f, 100);
+  const std::vector<std::uint8_t> selected = {1, 0, 0, 0, 0};
+  SupportConfig config;
+  config.views = 3;
+  ASSERT_TRUE(config.all_keyframes);  // the default
+  const SupportResult r = supportViews(points, frames, camera(), selected, config);
+  EXPECT_EQ(r.points, 200u);
+  EXPECT_EQ(r.unsupported_before, 200u);
+  EXPECT_EQ(r.unsupported_after, 0u);
+  EXPECT_EQ(r.added[1] + r.added[2] + r.added[3], 2);
+  EXPECT_EQ(r.added[0] + r.added[4], 0);
+  // Only keyframe 2's place: it is short of views although no keyframe was selected for it.
+  points[0].clear();
+  const SupportResult unselected = supportViews(points, frames, camera(), selected, config);
+  EXPECT_EQ(unselected.points, 100u);
+  EXPECT_EQ(unselected.unsupported_after, 0u);
+  config.all_keyframes = false;
+  EXPECT_EQ(supportViews(points, frames, camera(), selected, config).points, 0u);
+}
+
 TEST(ChangeSupport, BadInputNamesTheProblem) {
   const std::vector<RgbdFrame> frames = {wallFrame(0.0)};
   SupportConfig config;
@@ -136,6 +166,50 @@ TEST(ChangeSupport, BadInputNamesTheProblem) {
   config = {};
   config.max_depth_m = 0.05f;
   EXPECT_THROW(config.validate(), InputError);
+}
+
+TEST(ConfirmedPoints, AreTheMeasuredPointsTheMapHoldsWhereItsSurfaceIsAtTheMeasuredDepth) {
+  const CameraIntrinsics k = camera();
+  RgbdFrame frame = wallFrame(1.0);  // the wall 2 m ahead
+  SampleRaycast samples;
+  samples.grid = SampleGrid::of(k, 40);  // 4 x 3 samples
+  const std::size_t n = samples.grid.count();
+  samples.hit.assign(n, 1);
+  samples.depth_m.assign(n, 2.02f);
+  samples.surface.assign(n, SurfaceCheck::kHeld);
+  samples.hit[0] = 0;                                 // a miss
+  samples.surface[1] = SurfaceCheck::kNotHeld;        // the map does not hold the measured point
+  samples.surface[2] = SurfaceCheck::kNoMeasurement;  // no depth there
+  samples.depth_m[3] = 1.5f;                          // something in front of the measured wall
+  const SampleGrid& g = samples.grid;
+  frame.depth.at(g.pixelU(4 % g.width), g.pixelV(4 / g.width)) = 7.0f;  // beyond fusion's range
+  ConfirmConfig config;
+  config.min_radius_m = 0.01f;
+  const std::vector<change::ConfirmedPoint> points = confirmedPoints(samples, frame, k, config);
+  ASSERT_EQ(points.size(), n - 5);
+  const float u = static_cast<float>(g.pixelU(5 % g.width)), v = g.pixelV(5 / g.width);
+  EXPECT_NEAR(points[0].p_W.z(), 2.0f, 1e-5f);  // the measured point, not the rendered one
+  EXPECT_NEAR(points[0].p_W.x(), 1.0f + (u - k.cx_px) / k.fx_px * 2.0f, 1e-5f);
+  EXPECT_NEAR(points[0].p_W.y(), (v - k.cy_px) / k.fy_px * 2.0f, 1e-5f);
+  EXPECT_NEAR(points[0].radius_m, 0.75f * 40 * 2.0f / 100.0f, 1e-5f);  // 0.75 x the spacing
+  config.radius_scale = 0.0f;                                          // the minimum then applies
+  EXPECT_FLOAT_EQ(confirmedPoints(samples, frame, k, config)[0].radius_m, 0.01f);
+}
+
+TEST(ConfirmedPoints, RejectBadInput) {
+  const CameraIntrinsics k = camera();
+  const RgbdFrame frame = wallFrame(0.0);
+  SampleRaycast samples;
+  samples.grid = SampleGrid::of(k, 40);
+  samples.hit.assign(samples.grid.count(), 1);
+  samples.depth_m.assign(samples.grid.count(), 2.0f);  // no surface checks
+  EXPECT_THROW(confirmedPoints(samples, frame, k, ConfirmConfig{}), InputError);
+  ConfirmConfig bad;
+  bad.depth_tolerance_m = NAN;
+  EXPECT_THROW(bad.validate(), InputError);
+  bad = ConfirmConfig{};
+  bad.min_radius_m = -0.1f;
+  EXPECT_THROW(bad.validate(), InputError);
 }
 
 }  // namespace

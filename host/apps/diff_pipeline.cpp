@@ -34,7 +34,8 @@ DiffPipeline::DiffPipeline(vk::Context& context, const MapConfig& map_config,
 }
 
 void DiffPipeline::addSession(const Dataset& dataset, const std::string& source,
-                              ProgressBar& progress, std::size_t& done) {
+                              ProgressBar& progress, std::size_t& done,
+                              const BeforeEnd& before_end) {
   DiffSession session;
   session.source = source;
   session.frames = dataset.size();
@@ -49,6 +50,7 @@ void DiffPipeline::addSession(const Dataset& dataset, const std::string& source,
         stats.upload_ms + stats.normals_ms + stats.allocate_ms + stats.integrate_ms;
     progress.update(++done);
   }
+  if (before_end) before_end(detector_, index);
   session.update = detector_.endSession(index);
   sessions_.push_back(std::move(session));
 }

@@ -2,6 +2,7 @@
 // The work shared by `strata diff` and `strata demo`: sessions fused into a ChangeDetector one
 // after the other, then the static mesh and every session's discovered objects against the final
 // static map.
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -39,10 +40,12 @@ class DiffPipeline {
   DiffPipeline(vk::Context& context, const MapConfig& map_config,
                const change::ChangeConfig& change_config, const change::ObjectConfig& objects);
 
+  /// Runs on a session after its frames are fused, before it ends (to edit its layer).
+  using BeforeEnd = std::function<void(change::ChangeDetector&, int session)>;
   /// Fuses every frame of `dataset` into a new session and ends it. `progress` counts frames
   /// (`done` carries the count across sessions).
   void addSession(const Dataset& dataset, const std::string& source, ProgressBar& progress,
-                  std::size_t& done);
+                  std::size_t& done, const BeforeEnd& before_end = {});
   /// Adds a saved map as the next session and ends it.
   void addSessionMap(const TsdfMap& map, const std::string& source);
   /// Static mesh and every session's objects against the final static map. `maps` (optional)

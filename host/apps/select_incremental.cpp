@@ -1,5 +1,6 @@
 #include "apps/select_incremental.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -40,10 +41,14 @@ std::vector<std::size_t> indicesOf(const std::vector<std::uint8_t>& fused) {
   return out;
 }
 
+/// Change detection on the fused keyframes of every session. With `carry`, each session's layer
+/// also takes, before it ends, the latest observations around the points its keyframes
+/// confirmed (change/carry_forward.h); `carried` receives the counts.
 change::WorldEvaluation detectOnSelected(vk::Context& context, const sim::World& world,
                                          const Sessions& sessions, const MapConfig& change_map,
                                          const DiffRunInfo& info,
-                                         const selection::SelectionLoop& loop, bool quiet) {
+                                         const selection::SelectionLoop& loop, bool carry,
+                                         bool quiet, change::CarryStats& carried) {
   std::vector<SubsetDataset> subsets;
   std::size_t total = 0, done = 0;
   for (std::size_t s = 0; s < sessions.size(); ++s) {
@@ -51,8 +56,27 @@ change::WorldEvaluation detectOnSelected(vk::Context& context, const sim::World&
     total += subsets.back().size();
   }
   DiffPipeline pipeline(context, change_map, info.change, info.objects);
+  const float min_weight = info.change.min_weight;
+  TsdfMap latest(change_map);  // per voxel, the last session that observed it
+  const auto carry_forward = [&](change::ChangeDetector& detector, int session) {
+    if (session > 0) {
+      TsdfMap layer = detector.sessionMap(session);
+      const change::CarryStats stats =
+          change::carryObserved(latest, loop.sessions()[session].confirmed, min_weight, layer);
+      carried.points += stats.points;
+      carried.voxels += stats.voxels;
+      if (stats.voxels > 0) detector.replaceSessionMap(session, layer);
+    }
+  };
   ProgressBar progress("change detection on selected keyframes", total, !quiet);
-  for (const auto& subset : subsets) pipeline.addSession(subset, subset.name(), progress, done);
+  for (std::size_t s = 0; s < subsets.size(); ++s) {
+    pipeline.addSession(subsets[s], subsets[s].name(), progress, done,
+                        carry ? DiffPipeline::BeforeEnd(carry_forward) : DiffPipeline::BeforeEnd());
+    if (carry && s + 1 < subsets.size()) {
+      change::keepLatestObserved(pipeline.detector().sessionMap(static_cast<int>(s)), min_weight,
+                                 latest);
+    }
+  }
   progress.finish();
   const DiffResult result = pipeline.finish();
   std::vector<std::vector<change::DiscoveredObject>> objects;
@@ -64,6 +88,32 @@ change::WorldEvaluation detectOnSelected(vk::Context& context, const sim::World&
   change::EvaluationConfig eval_config;
   eval_config.min_views = info.change.minFrames();
   return change::evaluateWorld(world, objects, result.static_mesh, seen, eval_config);
+}
+
+/// Every evaluated moved object of `complete` with its match in `incremental` (both evaluate the
+/// same truth, so the same objects).
+std::vector<InstanceOutcome> instanceOutcomes(const sim::World& world,
+                                              const change::WorldEvaluation& complete,
+                                              const change::WorldEvaluation& incremental) {
+  std::vector<InstanceOutcome> out;
+  for (std::size_t s = 0; s < complete.sessions.size(); ++s) {
+    const std::vector<int> changed =
+        s > 0 ? world.session(static_cast<int>(s)).changedIds() : std::vector<int>{};
+    for (const change::ObjectMatch& c : complete.sessions[s].objects) {
+      if (!c.evaluated) continue;
+      InstanceOutcome o;
+      o.session = static_cast<int>(s);
+      o.object_id = c.object_id;
+      o.name = c.name;
+      o.arrival = s > 0 && std::count(changed.begin(), changed.end(), c.object_id) > 0;
+      o.complete = c;
+      for (const change::ObjectMatch& i : incremental.sessions.at(s).objects) {
+        if (i.object_id == c.object_id) o.incremental = i;
+      }
+      out.push_back(std::move(o));
+    }
+  }
+  return out;
 }
 
 /// Per session: the plot of the metrics along the trajectory with the selected and
@@ -107,6 +157,7 @@ IncrementalResult runIncremental(vk::Context& context, const sim::World& world,
     c.selection.smoothing_window = options.smoothing_window;
     c.selection.dilation = options.dilation;
     c.support.views = options.change_views ? info.change.minFrames() : 0;
+    c.confirm.enabled = incremental && options.carry_forward;
     return c;
   };
   selection::SelectionLoop full(context, configured(false));
@@ -142,9 +193,11 @@ IncrementalResult runIncremental(vk::Context& context, const sim::World& world,
   r.objects_complete = complete.totals;
   r.arrivals_complete = change::arrivalCounts(world, complete);
   const change::WorldEvaluation on_selected =
-      detectOnSelected(context, world, sessions, change_map, info, incremental, quiet);
+      detectOnSelected(context, world, sessions, change_map, info, incremental,
+                       options.carry_forward, quiet, r.carried);
   r.objects_incremental = on_selected.totals;
   r.arrivals_incremental = change::arrivalCounts(world, on_selected);
+  r.instances = instanceOutcomes(world, complete, on_selected);
   r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
 }
@@ -168,7 +221,8 @@ std::string summarizeIncremental(const IncrementalResult& r) {
       "%zu of %zu keyframes after the first session (%.1f %%; per session %s %%; %zu of them "
       "added as views of vacated places for change detection; fused keyframes against the "
       "truth: %s), surface coverage %.2f %% vs "
-      "%.2f %% fusing all; change detection on the selected keyframes found %zu of %zu moved "
+      "%.2f %% fusing all; change detection on the fused keyframes (%zu voxels carried forward "
+      "around %zu points the keyframes confirmed) found %zu of %zu moved "
       "objects (all keyframes: %zu of %zu); counting each moved object only in the sessions in "
       "which it changed, %zu of %zu (all keyframes: %zu of %zu). %.1f s.",
       100 * ours.recall(), 100 * ours.precision(), 100 * ours.accuracy(), 100 * ncc.recall(),
@@ -176,7 +230,8 @@ std::string summarizeIncremental(const IncrementalResult& r) {
       100 * hist.accuracy(), 100 * r.agreement.hitAgreement(), 100 * r.agreement.surfaceAgreement(),
       r.agreement.decision_mismatches, r.images.fused, r.images.total, 100 * r.images.share(),
       per_session.c_str(), r.change_views_added, r.fused_confusion.describe().c_str(),
-      100 * r.coverage_incremental, 100 * r.coverage_complete, r.objects_incremental.found,
+      100 * r.coverage_incremental, 100 * r.coverage_complete, r.carried.voxels, r.carried.points,
+      r.objects_incremental.found,
       r.objects_incremental.moved, r.objects_complete.found, r.objects_complete.moved,
       r.arrivals_incremental.found, r.arrivals_incremental.arrivals, r.arrivals_complete.found,
       r.arrivals_complete.arrivals, r.wall_s);

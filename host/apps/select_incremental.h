@@ -9,12 +9,23 @@
 #include <vector>
 
 #include "apps/diff_report.h"
+#include "change/carry_forward.h"
 #include "change/evaluation_session.h"
 #include "change/evaluation_world.h"
 #include "select/selection_loop.h"
 #include "select/selection_report.h"
 
 namespace strata::apps {
+
+/// One evaluated moved object in one session, as both change detections found it.
+struct InstanceOutcome {
+  int session = 0;
+  int object_id = 0;
+  std::string name;
+  bool arrival = false;  // it changed since the session before
+  change::ObjectMatch complete;
+  change::ObjectMatch incremental;
+};
 
 struct IncrementalResult {
   selection::Thresholds thresholds;
@@ -24,11 +35,14 @@ struct IncrementalResult {
   std::vector<selection::ImageUse> images_per_session;  // ... per session, 1 on
   /// Of them, added as views for change detection (select/change_support.h), over the sessions:
   /// the fused views each vacated point should have (0: step off), keyframes added, vacated points
-  /// of the selected keyframes, and those still short of views after.
+  /// of the keyframes, and those still short of views after.
   int change_views = 0;
   std::size_t change_views_added = 0;
   std::size_t vacated_points = 0;
   std::size_t vacated_points_short = 0;
+  /// Observations carried forward into the sessions' change-detection layers around the points
+  /// the keyframes confirmed (change/carry_forward.h), over the sessions.
+  change::CarryStats carried;
   /// The fused keyframes (selected or added) against the truth.
   selection::Confusion fused_confusion;
   double coverage_complete = 0.0;         // surface coverage of the map fused from every keyframe
@@ -40,6 +54,7 @@ struct IncrementalResult {
   /// its instances in those sessions are what the two runs may differ in by design.
   change::ArrivalCounts arrivals_complete;
   change::ArrivalCounts arrivals_incremental;
+  std::vector<InstanceOutcome> instances;  // every evaluated moved object, session by session
   std::vector<std::string> files;
   double wall_s = 0.0;
 };
@@ -51,6 +66,9 @@ struct IncrementalOptions {
   /// Add the keyframes change detection needs to see vacated places in enough fused frames
   /// (select/change_support.h).
   bool change_views = true;
+  /// Carry the latest observations forward where keyframes confirmed the map, so change
+  /// detection sees objects standing as before (change/carry_forward.h).
+  bool carry_forward = true;
 };
 
 /// `sessions`: the demo's sessions, already fused by its complete run (their seen() surfaces are

@@ -28,6 +28,26 @@ void writeArrivals(std::ostringstream& out, const change::ArrivalCounts& a) {
       << ", \"recall\": " << a.recall() << "}";
 }
 
+void writeMatch(std::ostringstream& out, const change::ObjectMatch& m) {
+  out << "{\"found\": " << (m.found ? "true" : "false") << ", \"coverage\": " << m.coverage
+      << ", \"on_object\": " << m.on_object << "}";
+}
+
+void writeInstances(std::ostringstream& out, const std::vector<InstanceOutcome>& instances) {
+  out << "[";
+  for (std::size_t i = 0; i < instances.size(); ++i) {
+    const InstanceOutcome& o = instances[i];
+    out << (i > 0 ? ", " : "") << "{\"session\": " << o.session << ", \"object\": " << o.object_id
+        << ", \"name\": " << jsonQuoted(o.name)
+        << ", \"arrival\": " << (o.arrival ? "true" : "false") << ", \"complete\": ";
+    writeMatch(out, o.complete);
+    out << ", \"incremental\": ";
+    writeMatch(out, o.incremental);
+    out << "}";
+  }
+  out << "]";
+}
+
 }  // namespace
 
 std::string incrementalJson(const IncrementalResult& r) {
@@ -57,7 +77,9 @@ std::string incrementalJson(const IncrementalResult& r) {
   }
   out << "]}, \"change_views\": {\"views\": " << r.change_views
       << ", \"added\": " << r.change_views_added << ", \"vacated_points\": " << r.vacated_points
-      << ", \"short_of_views\": " << r.vacated_points_short << "}, \"fused_vs_truth\": ";
+      << ", \"short_of_views\": " << r.vacated_points_short
+      << "}, \"carried_forward\": {\"confirmed_points\": " << r.carried.points
+      << ", \"voxels\": " << r.carried.voxels << "}, \"fused_vs_truth\": ";
   const selection::Confusion& f = r.fused_confusion;
   out << "{\"recall\": " << f.recall() << ", \"precision\": " << f.precision()
       << ", \"accuracy\": " << f.accuracy()
@@ -70,6 +92,8 @@ std::string incrementalJson(const IncrementalResult& r) {
   writeArrivals(out, r.arrivals_complete);
   out << ", \"arrivals_incremental\": ";
   writeArrivals(out, r.arrivals_incremental);
+  out << ", \"instances\": ";
+  writeInstances(out, r.instances);
   out << ", \"wall_s\": " << r.wall_s << "}";
   return out.str();
 }

@@ -51,19 +51,34 @@ FrameStats ChangeDetector::integrate(int session, const RgbdFrame& frame,
   return backend_->integrate(session, frame, intrinsics);
 }
 
-int ChangeDetector::addSessionMap(const TsdfMap& session_map) {
+void ChangeDetector::requireSameGrid(const TsdfMap& session_map, const char* what) const {
   const MapConfig& c = session_map.config();
   // The same voxel grid and band, or the layers would not compare voxel for voxel.
   if (std::fabs(c.voxel_size_m - map_config_.voxel_size_m) > 1e-7f ||
       std::fabs(c.truncationDistance() - map_config_.truncationDistance()) > 1e-7f) {
-    throw InputError("addSessionMap: the map has voxel size " + std::to_string(c.voxel_size_m) +
-                     " m and truncation " + std::to_string(c.truncationDistance()) +
-                     " m; the detector uses " + std::to_string(map_config_.voxel_size_m) +
-                     " m and " + std::to_string(map_config_.truncationDistance()) + " m");
+    throw InputError(std::string(what) + ": the map has voxel size " +
+                     std::to_string(c.voxel_size_m) + " m and truncation " +
+                     std::to_string(c.truncationDistance()) + " m; the detector uses " +
+                     std::to_string(map_config_.voxel_size_m) + " m and " +
+                     std::to_string(map_config_.truncationDistance()) + " m");
   }
+}
+
+int ChangeDetector::addSessionMap(const TsdfMap& session_map) {
+  requireSameGrid(session_map, "addSessionMap");
   const int session = beginSession();
   backend_->setSessionMap(session, session_map);
   return session;
+}
+
+void ChangeDetector::replaceSessionMap(int session, const TsdfMap& session_map) {
+  requireSession(session, "replaceSessionMap");
+  if (sessions_[session].ended) {
+    throw InputError("replaceSessionMap: session " + std::to_string(session) +
+                     " has ended (it is merged into the static map)");
+  }
+  requireSameGrid(session_map, "replaceSessionMap");
+  backend_->setSessionMap(session, session_map);
 }
 
 ChangeUpdateStats ChangeDetector::endSession(int session) {

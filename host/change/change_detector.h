@@ -48,6 +48,10 @@ class ChangeDetector {
   /// Begins a session whose layer is `session_map` (a saved map with the same voxel size and
   /// truncation); returns its index. It still needs endSession.
   int addSessionMap(const TsdfMap& session_map);
+  /// Replaces the layer of `session` (begun, not ended) with `session_map` (same voxel size and
+  /// truncation): for host-side edits of a layer before it ends, such as carrying observations
+  /// forward (carry_forward.h). Throws InputError for a bad session or map before anything changes.
+  void replaceSessionMap(int session, const TsdfMap& session_map);
   /// Merges `session` (the next one to end) into S, recomputes D and the session's dynamic part
   /// (steps 2-5). Stage times: device ms from timestamp queries (host ms in reference mode).
   ChangeUpdateStats endSession(int session);
@@ -77,6 +81,7 @@ class ChangeDetector {
     int part_version = -1;  // ended_ when its dynamic part was computed
   };
   void requireSession(int session, const char* what) const;
+  void requireSameGrid(const TsdfMap& session_map, const char* what) const;
 
   MapConfig map_config_;
   ChangeConfig config_;

@@ -102,8 +102,9 @@ SupportResult supportViews(const std::vector<std::vector<Eigen::Vector3f>>& vaca
   if (config.views == 0) return r;
   std::vector<Eigen::Vector3f> points_W;
   for (std::size_t k = 0; k < frames.size(); ++k) {
-    if (selected[k])
+    if (selected[k] || config.all_keyframes) {
       points_W.insert(points_W.end(), vacated_points[k].begin(), vacated_points[k].end());
+    }
   }
   r.points = points_W.size();
   const auto passed = visibility(points_W, frames, intrinsics, config);

@@ -38,6 +38,8 @@ LoopConfig demoLoopConfig(bool incremental) {
   c.with_reference = !incremental;
   c.support.views = 3;  // the demo's change detector: min weight 3 with constant weights
   c.support.max_depth_m = c.map.max_depth_m;
+  c.confirm.enabled = incremental;
+  c.confirm.max_depth_m = c.map.max_depth_m;
   return c;
 }
 
@@ -54,6 +56,7 @@ SelectionLoop::SelectionLoop(vk::Context& context, const LoopConfig& config)
   config_.selection.validate();
   config_.truth.validate();
   config_.support.validate();
+  config_.confirm.validate();
 }
 
 void SelectionLoop::recordTruth(const sim::SimSessionDataset& session, std::size_t index,
@@ -81,10 +84,10 @@ void SelectionLoop::recordHistory(const sim::SimSessionDataset& session, const S
   session_surface_W_.clear();
 }
 
-std::vector<std::vector<Eigen::Vector3f>> SelectionLoop::scoreSession(
+SelectionLoop::SamplePoints SelectionLoop::scoreSession(
     const sim::SimSessionDataset& session, const std::vector<RgbdFrame>& frames, SessionRun& run,
-    bool collect_vacated, const std::function<void(std::size_t)>& progress) {
-  std::vector<std::vector<Eigen::Vector3f>> vacated_points_W;
+    bool collect_points, const std::function<void(std::size_t)>& progress) {
+  SamplePoints points;
   TsdfMap map(config_.map);
   if (config_.with_reference) fusion_.map().download(map);
   for (std::size_t i = 0; i < frames.size(); ++i) {
@@ -93,9 +96,13 @@ std::vector<std::vector<Eigen::Vector3f>> SelectionLoop::scoreSession(
     run.scores.push_back(
         scorer_.score(fusion_.map(), frames[i], session.intrinsics(), &device_ms, &samples));
     run.score_device_ms += device_ms;
-    if (collect_vacated) {
-      vacated_points_W.push_back(
+    if (collect_points && config_.support.views > 0) {
+      points.vacated_W.push_back(
           vacatedPoints(samples, frames[i], session.intrinsics(), config_.support));
+    }
+    if (collect_points && config_.confirm.enabled) {
+      points.confirmed.push_back(
+          confirmedPoints(samples, frames[i], session.intrinsics(), config_.confirm));
     }
     if (config_.with_reference) {
       SampleRaycast reference;
@@ -106,7 +113,7 @@ std::vector<std::vector<Eigen::Vector3f>> SelectionLoop::scoreSession(
     }
     if (progress) progress(i + 1);
   }
-  return vacated_points_W;
+  return points;
 }
 
 const SessionRun& SelectionLoop::addSession(const sim::SimSessionDataset& session,
@@ -131,15 +138,16 @@ const SessionRun& SelectionLoop::addSession(const sim::SimSessionDataset& sessio
       if (progress) progress(offset + done);
     };
   };
+  SamplePoints points;
   if (run.session > 0) {
-    // The complete run fuses every keyframe anyway: no views to add.
+    // The complete run fuses every keyframe anyway: no views to add, nothing skipped.
+    points = scoreSession(session, frames, run, config_.incremental, step(0));
     const bool add_views = config_.incremental && config_.support.views > 0;
-    const auto vacated_points_W = scoreSession(session, frames, run, add_views, step(0));
     SelectionConfig selection = config_.selection;
     selection.thresholds = thresholds_;
     run.selection = selectKeyframes(run.scores, selection);
     if (add_views) {
-      run.support = supportViews(vacated_points_W, frames, session.intrinsics(),
+      run.support = supportViews(points.vacated_W, frames, session.intrinsics(),
                                  run.selection.selected, config_.support);
       run.selection.support = std::move(run.support.added);  // its one home
     }
@@ -154,6 +162,9 @@ const SessionRun& SelectionLoop::addSession(const sim::SimSessionDataset& sessio
   for (std::size_t i = 0; i < n; ++i) {
     if (run.fused[i]) fusion_.integrate(frames[i], session.intrinsics());
     if (progress) progress(n + i + 1);
+  }
+  for (const auto& confirmed : points.confirmed) {
+    run.confirmed.insert(run.confirmed.end(), confirmed.begin(), confirmed.end());
   }
   if (run.session == 0) {
     scoreSession(session, frames, run, false, {});

@@ -11,6 +11,7 @@
 
 #include "kernels/device_fusion.h"
 #include "select/change_support.h"
+#include "select/confirmed_points.h"
 #include "select/keyframe_scorer.h"
 #include "select/keyframe_selection.h"
 #include "select/map_history.h"
@@ -38,6 +39,9 @@ struct LoopConfig {
   /// Views of vacated places for change detection, added to the selection of sessions >= 1
   /// (views 0: none; demoLoopConfig: 3, the demo's change detector's min weight).
   SupportConfig support{0};
+  /// Incremental, sessions >= 1: keep the points the session's keyframes confirmed
+  /// (SessionRun::confirmed; off by default, on in demoLoopConfig).
+  ConfirmConfig confirm;
 };
 
 struct SessionRun {
@@ -52,6 +56,12 @@ struct SessionRun {
   /// are selection.support).
   SupportResult support;
   std::vector<std::uint8_t> fused;  // keyframes fused into the map
+  /// Incremental with confirm.enabled, sessions >= 1: the confirmed points of every keyframe, for
+  /// change detection to carry observations forward (change/carry_forward.h). Fused keyframes'
+  /// points count too: one or two fused frames of a place leave it below the detector's min
+  /// weight, where the latest observation is the better value (office: printer in session 2,
+  /// 0.00 -> 0.43 of it found).
+  std::vector<change::ConfirmedPoint> confirmed;
   double score_device_ms = 0.0;     // raycast device time, summed
   std::size_t fusedCount() const;
 };
@@ -88,11 +98,16 @@ class SelectionLoop {
   const LoopConfig& config() const { return config_; }
 
  private:
-  /// Scores every keyframe; with `collect_vacated`, returns each keyframe's vacated points
-  /// (change_support.h), else nothing.
-  std::vector<std::vector<Eigen::Vector3f>> scoreSession(
-      const sim::SimSessionDataset& session, const std::vector<RgbdFrame>& frames, SessionRun& run,
-      bool collect_vacated, const std::function<void(std::size_t)>& progress);
+  /// Per keyframe, what its raycast shows beyond the scores (empty unless asked for).
+  struct SamplePoints {
+    std::vector<std::vector<Eigen::Vector3f>> vacated_W;        // change_support.h
+    std::vector<std::vector<change::ConfirmedPoint>> confirmed;  // confirmed_points.h
+  };
+  /// Scores every keyframe; with `collect_points`, also returns each keyframe's vacated points
+  /// (when support views are on) and confirmed points (when confirm is on).
+  SamplePoints scoreSession(const sim::SimSessionDataset& session,
+                            const std::vector<RgbdFrame>& frames, SessionRun& run,
+                            bool collect_points, const std::function<void(std::size_t)>& progress);
   void recordTruth(const sim::SimSessionDataset& session, std::size_t index,
                    const sim::SimulatedFrame& frame, const TsdfMap& map, SessionRun& run);
   /// After a session's fusion: its world and what its fused keyframes saw join history_.
