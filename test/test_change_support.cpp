@@ -63,6 +63,28 @@ TEST(ChangeSupport, VacatedPointsAreTheMapsSurfaceWhereTheKeyframeSeesBeyondIt) 
   EXPECT_TRUE(passesPoint(frame, camera(), points[0], config));
 }
 
+TEST(ChangeSupport, MinNeighboursKeepsAreasAndDropsLoneSamples) {
+  const RgbdFrame frame = wallFrame(0.0);
+  SampleRaycast samples;
+  samples.grid = SampleGrid::of(camera(), 10);  // 16 x 12 samples
+  const SampleGrid& g = samples.grid;
+  const std::size_t n = g.count();
+  samples.hit.assign(n, 1);
+  samples.depth_m.assign(n, 2.0f);
+  for (int gy = 2; gy <= 4; ++gy) {  // a 3 x 3 area in front of the wall: a vacated place
+    for (int gx = 2; gx <= 4; ++gx) samples.depth_m[gy * g.width + gx] = 1.5f;
+  }
+  samples.depth_m[9 * g.width + 12] = 1.5f;  // a lone sample
+  SupportConfig config;
+  EXPECT_EQ(vacatedPoints(samples, frame, camera(), config).size(), 10u);
+  config.min_neighbours = 3;  // corners of the area have 3, edges 5, the centre 8
+  EXPECT_EQ(vacatedPoints(samples, frame, camera(), config).size(), 9u);
+  config.min_neighbours = 4;
+  EXPECT_EQ(vacatedPoints(samples, frame, camera(), config).size(), 5u);
+  config.min_neighbours = 9;
+  EXPECT_THROW(config.validate(), InputError);
+}
+
 TEST(ChangeSupport, AKeyframePassesAPointWhenItMeasuresBeyondIt) {
   const SupportConfig config;
   const RgbdFrame frame = wallFrame(0.0);

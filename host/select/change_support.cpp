@@ -16,6 +16,10 @@ void SupportConfig::validate() const {
   if (!(depth_tolerance_m > 0.0f) || !std::isfinite(depth_tolerance_m)) {
     throw InputError("support depth_tolerance_m must be a positive number");
   }
+  if (min_neighbours < 0 || min_neighbours > 8) {
+    throw InputError("support min_neighbours must be in [0, 8], got " +
+                     std::to_string(min_neighbours));
+  }
   if (!(max_depth_m > depth_tolerance_m) || !std::isfinite(max_depth_m)) {
     throw InputError("support max_depth_m must be a number above depth_tolerance_m");
   }
@@ -35,6 +39,20 @@ bool passes(const RgbdFrame& frame, const Eigen::Isometry3f& T_C_W, const Camera
   return measured_m > p_C.z() + config.depth_tolerance_m && measured_m <= config.max_depth_m;
 }
 
+/// Of the 8 grid neighbours of sample (gx, gy), how many look beyond the map's surface.
+int neighboursBeyond(const std::vector<std::uint8_t>& beyond, const SampleGrid& grid, int gx,
+                     int gy) {
+  int n = 0;
+  for (int dy = -1; dy <= 1; ++dy) {
+    for (int dx = -1; dx <= 1; ++dx) {
+      const int x = gx + dx, y = gy + dy;
+      if ((dx == 0 && dy == 0) || x < 0 || y < 0 || x >= grid.width || y >= grid.height) continue;
+      n += beyond[static_cast<std::size_t>(y) * grid.width + x];
+    }
+  }
+  return n;
+}
+
 }  // namespace
 
 std::vector<Eigen::Vector3f> vacatedPoints(const SampleRaycast& samples, const RgbdFrame& frame,
@@ -42,19 +60,26 @@ std::vector<Eigen::Vector3f> vacatedPoints(const SampleRaycast& samples, const R
   const SampleGrid& grid = samples.grid;
   const Eigen::Vector4f K(k.fx_px, k.fy_px, k.cx_px, k.cy_px);
   const Eigen::Isometry3f T_W_C = frame.T_W_C.cast<float>();
-  std::vector<Eigen::Vector3f> points_W;
+  // Which samples look beyond the map's surface.
+  std::vector<std::uint8_t> beyond(static_cast<std::size_t>(grid.count()), 0);
   for (int gy = 0; gy < grid.height; ++gy) {
     for (int gx = 0; gx < grid.width; ++gx) {
       const std::size_t s = static_cast<std::size_t>(gy) * grid.width + gx;
       if (!samples.hit.at(s)) continue;
-      const int u = grid.pixelU(gx), v = grid.pixelV(gy);
-      const float measured_m = frame.depth.at(u, v);
-      const float rendered_m = samples.depth_m.at(s);
+      const float measured_m = frame.depth.at(grid.pixelU(gx), grid.pixelV(gy));
       // No depth, not beyond the map's surface, or beyond what fusion uses.
-      if (!(measured_m > rendered_m + config.depth_tolerance_m)) continue;
-      if (measured_m > config.max_depth_m) continue;
+      if (!(measured_m > samples.depth_m.at(s) + config.depth_tolerance_m)) continue;
+      beyond[s] = measured_m <= config.max_depth_m ? 1 : 0;
+    }
+  }
+  std::vector<Eigen::Vector3f> points_W;
+  for (int gy = 0; gy < grid.height; ++gy) {
+    for (int gx = 0; gx < grid.width; ++gx) {
+      const std::size_t s = static_cast<std::size_t>(gy) * grid.width + gx;
+      if (!beyond[s] || neighboursBeyond(beyond, grid, gx, gy) < config.min_neighbours) continue;
+      const int u = grid.pixelU(gx), v = grid.pixelV(gy);
       const Eigen::Vector3f ray_C = pixelRay(static_cast<float>(u), static_cast<float>(v), K);
-      points_W.push_back(T_W_C * Eigen::Vector3f(ray_C * rendered_m));  // the map's surface
+      points_W.push_back(T_W_C * Eigen::Vector3f(ray_C * samples.depth_m[s]));  // map's surface
     }
   }
   return points_W;
