@@ -186,16 +186,18 @@ TEST_F(SelectCliTest, TruthColumnsAndStrip) {
 }
 
 // A bad selection setting of `strata demo --incremental` ends it before any session is simulated.
-TEST(SelectDemoOptions, BadWindowOrDilationExitsBeforeTheWork) {
+TEST(SelectDemoOptions, BadWindowDilationOrViewMinimumExitsBeforeTheWork) {
   apps::DemoOptions o;
   o.incremental = true;
   o.quiet = true;
   o.out_dir =
       (fs::temp_directory_path() / ("strata_demo_bad_" + std::to_string(::getpid()))).string();
-  for (const auto& [window, dilation, field] :
-       {std::tuple{4, 0, "smoothing_window"}, std::tuple{1, -1, "dilation"}}) {
+  for (const auto& [window, dilation, min_points, field] :
+       {std::tuple{4, 0, 30, "smoothing_window"}, std::tuple{1, -1, 30, "dilation"},
+        std::tuple{1, 0, 0, "min_points"}}) {
     o.select.smoothing_window = window;
     o.select.dilation = dilation;
+    o.select.change_view_min_points = min_points;
     testing::internal::CaptureStderr();
     EXPECT_EQ(apps::runDemo(o), 2);
     const std::string err = testing::internal::GetCapturedStderr();

@@ -109,6 +109,9 @@ DemoReport runDemoPipeline(const DemoOptions& o) {
     check.smoothing_window = o.select.smoothing_window;
     check.dilation = o.select.dilation;
     check.validate();
+    selection::SupportConfig support;
+    support.min_points = o.select.change_view_min_points;
+    support.validate();
   }
   const auto world = loadWorld(o.world, o.seed, o.sessions);
   const sim::SimSessionConfig config = sessionConfig(30.0, o.frames, !o.no_noise, false);
@@ -176,6 +179,10 @@ CLI::App* addDemoCommand(CLI::App& app, DemoOptions& o) {
   demo->add_flag(
       "--no-change-views", [&o](std::int64_t) { o.select.change_views = false; },
       "With --incremental: fuse only the selected keyframes, no extra views of vacated places");
+  demo->add_option("--change-view-min-points", o.select.change_view_min_points,
+                   "With --incremental: vacated points short of views a keyframe must pass to be "
+                   "added as a view for change detection")
+      ->capture_default_str();
   demo->add_flag(
       "--no-carry-forward", [&o](std::int64_t) { o.select.carry_forward = false; },
       "With --incremental: change detection on the fused keyframes only, nothing carried forward "

@@ -157,6 +157,7 @@ IncrementalResult runIncremental(vk::Context& context, const sim::World& world,
     c.selection.smoothing_window = options.smoothing_window;
     c.selection.dilation = options.dilation;
     c.support.views = options.change_views ? info.change.minFrames() : 0;
+    c.support.min_points = options.change_view_min_points;
     c.confirm.enabled = incremental && options.carry_forward;
     return c;
   };

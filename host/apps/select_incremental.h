@@ -66,6 +66,9 @@ struct IncrementalOptions {
   /// Add the keyframes change detection needs to see vacated places in enough fused frames
   /// (select/change_support.h).
   bool change_views = true;
+  /// A keyframe is added as a view only when it passes at least this many vacated points short of
+  /// views (SupportConfig::min_points).
+  int change_view_min_points = selection::SupportConfig{}.min_points;
   /// Carry the latest observations forward where keyframes confirmed the map, so change
   /// detection sees objects standing as before (change/carry_forward.h).
   bool carry_forward = true;
