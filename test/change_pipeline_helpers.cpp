@@ -33,9 +33,7 @@ TsdfMap observedMax(const std::vector<TsdfMap>& sessions, float min_weight) {
   for (const TsdfMap& session : sessions) {
     forEachVoxel(session, [&](const GlobalVoxelIndex& v, const TsdfVoxel& voxel) {
       if (voxel.weight < min_weight) return;
-      const BlockIndex b = blockOfVoxel(v);
-      const Eigen::Vector3i local = v - b * kBlockEdge;
-      TsdfVoxel& m = out.allocateBlock(b)[linearVoxelIndex(local.x(), local.y(), local.z())];
+      TsdfVoxel& m = out.allocateVoxel(v);
       m.tsdf_m = m.weight > 0.0f ? std::max(m.tsdf_m, voxel.tsdf_m) : voxel.tsdf_m;
       m.weight = std::max(m.weight, min_weight);
     });

@@ -27,9 +27,7 @@ MapConfig gridConfig(float voxel_m = kVoxel) {
 }
 
 void setVoxel(TsdfMap& map, const GlobalVoxelIndex& v, float tsdf_m, float weight) {
-  const BlockIndex b = blockOfVoxel(v);
-  const GlobalVoxelIndex l = v - b * kBlockEdge;
-  map.allocateBlock(b)[linearVoxelIndex(l.x(), l.y(), l.z())] = TsdfVoxel{tsdf_m, weight, 7u};
+  map.allocateVoxel(v) = TsdfVoxel{tsdf_m, weight, 7u};
 }
 
 float weightAt(const TsdfMap& map, const GlobalVoxelIndex& v) {

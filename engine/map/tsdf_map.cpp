@@ -30,6 +30,12 @@ const TsdfVoxel* TsdfMap::findVoxel(const GlobalVoxelIndex& v) const {
   return &(*block)[linearVoxelIndex(local.x(), local.y(), local.z())];
 }
 
+TsdfVoxel& TsdfMap::allocateVoxel(const GlobalVoxelIndex& v) {
+  const BlockIndex b = blockOfVoxel(v);
+  const Eigen::Vector3i local = v - b * kBlockEdge;
+  return allocateBlock(b)[linearVoxelIndex(local.x(), local.y(), local.z())];
+}
+
 std::vector<BlockIndex> TsdfMap::sortedBlockIndices() const {
   std::vector<BlockIndex> indices;
   indices.reserve(blocks_.size());

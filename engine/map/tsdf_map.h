@@ -40,6 +40,8 @@ class TsdfMap {
 
   /// Voxel at a global index, nullptr when its block is not allocated.
   const TsdfVoxel* findVoxel(const GlobalVoxelIndex& v) const;
+  /// Voxel at a global index, its block allocated (all voxels unobserved) when absent.
+  TsdfVoxel& allocateVoxel(const GlobalVoxelIndex& v);
 
   /// All block indices, sorted (z, y, x) so iteration and files are deterministic.
   std::vector<BlockIndex> sortedBlockIndices() const;

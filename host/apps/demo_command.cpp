@@ -186,7 +186,7 @@ CLI::App* addDemoCommand(CLI::App& app, DemoOptions& o) {
   demo->add_flag(
       "--no-carry-forward", [&o](std::int64_t) { o.select.carry_forward = false; },
       "With --incremental: change detection on the fused keyframes only, nothing carried forward "
-      "where skipped keyframes confirmed the map");
+      "where keyframes confirmed the map");
   demo->add_option("--select-dilation", o.select.dilation,
                    "With --incremental: keyframes added on each side of a selected one")
       ->capture_default_str();

@@ -1,6 +1,5 @@
 #include "apps/select_incremental.h"
 
-#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -58,24 +57,23 @@ change::WorldEvaluation detectOnSelected(vk::Context& context, const sim::World&
   DiffPipeline pipeline(context, change_map, info.change, info.objects);
   const float min_weight = info.change.min_weight;
   TsdfMap latest(change_map);  // per voxel, the last session that observed it
+  // One download per session: the layer is carried into, then (as ended: endSession leaves a
+  // session's layer as it is) kept as the latest observations for the sessions after it.
   const auto carry_forward = [&](change::ChangeDetector& detector, int session) {
+    TsdfMap layer = detector.sessionMap(session);
     if (session > 0) {
-      TsdfMap layer = detector.sessionMap(session);
       const change::CarryStats stats =
           change::carryObserved(latest, loop.sessions()[session].confirmed, min_weight, layer);
       carried.points += stats.points;
       carried.voxels += stats.voxels;
       if (stats.voxels > 0) detector.replaceSessionMap(session, layer);
     }
+    change::keepLatestObserved(layer, min_weight, latest);
   };
   ProgressBar progress("change detection on selected keyframes", total, !quiet);
-  for (std::size_t s = 0; s < subsets.size(); ++s) {
-    pipeline.addSession(subsets[s], subsets[s].name(), progress, done,
+  for (const auto& subset : subsets) {
+    pipeline.addSession(subset, subset.name(), progress, done,
                         carry ? DiffPipeline::BeforeEnd(carry_forward) : DiffPipeline::BeforeEnd());
-    if (carry && s + 1 < subsets.size()) {
-      change::keepLatestObserved(pipeline.detector().sessionMap(static_cast<int>(s)), min_weight,
-                                 latest);
-    }
   }
   progress.finish();
   const DiffResult result = pipeline.finish();
@@ -97,15 +95,13 @@ std::vector<InstanceOutcome> instanceOutcomes(const sim::World& world,
                                               const change::WorldEvaluation& incremental) {
   std::vector<InstanceOutcome> out;
   for (std::size_t s = 0; s < complete.sessions.size(); ++s) {
-    const std::vector<int> changed =
-        s > 0 ? world.session(static_cast<int>(s)).changedIds() : std::vector<int>{};
     for (const change::ObjectMatch& c : complete.sessions[s].objects) {
       if (!c.evaluated) continue;
       InstanceOutcome o;
       o.session = static_cast<int>(s);
       o.object_id = c.object_id;
       o.name = c.name;
-      o.arrival = s > 0 && std::count(changed.begin(), changed.end(), c.object_id) > 0;
+      o.arrival = change::isArrival(world, o.session, c.object_id);
       o.complete = c;
       for (const change::ObjectMatch& i : incremental.sessions.at(s).objects) {
         if (i.object_id == c.object_id) o.incremental = i;

@@ -8,23 +8,20 @@
 namespace strata::change {
 namespace {
 
-/// The voxel `v` of `map`, its block allocated when absent.
-TsdfVoxel& allocateVoxel(TsdfMap& map, const GlobalVoxelIndex& v) {
-  const BlockIndex b = blockOfVoxel(v);
-  const GlobalVoxelIndex local = v - b * kBlockEdge;
-  return map.allocateBlock(b)[linearVoxelIndex(local.x(), local.y(), local.z())];
+void requireSameVoxelSize(const TsdfMap& a, const TsdfMap& b, const char* what) {
+  if (std::fabs(a.config().voxel_size_m - b.config().voxel_size_m) > 1e-7f) {
+    throw InputError(std::string(what) + ": the maps have different voxel sizes (" +
+                     std::to_string(a.config().voxel_size_m) + " and " +
+                     std::to_string(b.config().voxel_size_m) + " m)");
+  }
 }
 
 }  // namespace
 
 CarryStats carryObserved(const TsdfMap& latest, const std::vector<ConfirmedPoint>& points,
                          float min_weight, TsdfMap& session) {
+  requireSameVoxelSize(latest, session, "carryObserved");
   const float voxel_m = session.config().voxel_size_m;
-  if (std::fabs(latest.config().voxel_size_m - voxel_m) > 1e-7f) {
-    throw InputError("carryObserved: the maps have different voxel sizes (" +
-                     std::to_string(latest.config().voxel_size_m) + " and " +
-                     std::to_string(voxel_m) + " m)");
-  }
   CarryStats stats;
   stats.points = points.size();
   for (const ConfirmedPoint& point : points) {
@@ -43,7 +40,7 @@ CarryStats carryObserved(const TsdfMap& latest, const std::vector<ConfirmedPoint
           if (from == nullptr || from->weight < min_weight) continue;
           const TsdfVoxel* present = session.findVoxel(v);
           if (present != nullptr && present->weight >= min_weight) continue;
-          allocateVoxel(session, v) = *from;
+          session.allocateVoxel(v) = *from;
           ++stats.voxels;
         }
       }
@@ -53,9 +50,7 @@ CarryStats carryObserved(const TsdfMap& latest, const std::vector<ConfirmedPoint
 }
 
 void keepLatestObserved(const TsdfMap& session, float min_weight, TsdfMap& latest) {
-  if (std::fabs(latest.config().voxel_size_m - session.config().voxel_size_m) > 1e-7f) {
-    throw InputError("keepLatestObserved: the maps have different voxel sizes");
-  }
+  requireSameVoxelSize(latest, session, "keepLatestObserved");
   for (const auto& [index, block] : session.blocks()) {
     TsdfBlock* into = nullptr;
     for (int i = 0; i < kVoxelsPerBlock; ++i) {

@@ -25,7 +25,7 @@
 namespace strata::change {
 
 /// A surface point a keyframe confirmed, world frame, and the radius it vouches for
-/// (about half the distance to the next sample of its keyframe).
+/// (select/confirmed_points.h: enough to reach the next samples of its keyframe).
 struct ConfirmedPoint {
   Eigen::Vector3f p_W = Eigen::Vector3f::Zero();
   float radius_m = 0.0f;

@@ -33,6 +33,12 @@ WorldEvaluation evaluateWorld(const sim::World& world,
   return result;
 }
 
+bool isArrival(const sim::World& world, int session, int object_id) {
+  if (session == 0) return false;                                        // nothing came before it
+  const std::vector<int> changed = world.session(session).changedIds();  // ascending
+  return std::binary_search(changed.begin(), changed.end(), object_id);
+}
+
 ArrivalCounts arrivalCounts(const sim::World& world, const WorldEvaluation& evaluation) {
   if (evaluation.sessions.size() > static_cast<std::size_t>(world.sessionCount())) {
     throw InputError("arrivalCounts: an evaluation of " +
@@ -41,11 +47,8 @@ ArrivalCounts arrivalCounts(const sim::World& world, const WorldEvaluation& eval
   }
   ArrivalCounts counts;
   for (const SessionObjectEvaluation& session : evaluation.sessions) {
-    if (session.session == 0) continue;  // nothing came before it
-    const std::vector<int> changed = world.session(session.session).changedIds();
     for (const ObjectMatch& object : session.objects) {
-      if (!object.evaluated) continue;
-      if (!std::binary_search(changed.begin(), changed.end(), object.object_id)) continue;
+      if (!object.evaluated || !isArrival(world, session.session, object.object_id)) continue;
       ++counts.arrivals;
       counts.found += object.found ? 1 : 0;
     }

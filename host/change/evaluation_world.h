@@ -34,6 +34,8 @@ struct ArrivalCounts {
   std::size_t found = 0;
   double recall() const { return arrivals ? double(found) / double(arrivals) : 1.0; }
 };
+/// Whether object `object_id` changed in `session` since the session before (false in session 0).
+bool isArrival(const sim::World& world, int session, int object_id);
 /// Throws InputError when `evaluation` has more sessions than `world`.
 ArrivalCounts arrivalCounts(const sim::World& world, const WorldEvaluation& evaluation);
 

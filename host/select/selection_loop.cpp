@@ -84,10 +84,10 @@ void SelectionLoop::recordHistory(const sim::SimSessionDataset& session, const S
   session_surface_W_.clear();
 }
 
-SelectionLoop::SamplePoints SelectionLoop::scoreSession(
+std::vector<std::vector<Eigen::Vector3f>> SelectionLoop::scoreSession(
     const sim::SimSessionDataset& session, const std::vector<RgbdFrame>& frames, SessionRun& run,
     bool collect_points, const std::function<void(std::size_t)>& progress) {
-  SamplePoints points;
+  std::vector<std::vector<Eigen::Vector3f>> vacated_W;
   TsdfMap map(config_.map);
   if (config_.with_reference) fusion_.map().download(map);
   for (std::size_t i = 0; i < frames.size(); ++i) {
@@ -97,12 +97,12 @@ SelectionLoop::SamplePoints SelectionLoop::scoreSession(
         scorer_.score(fusion_.map(), frames[i], session.intrinsics(), &device_ms, &samples));
     run.score_device_ms += device_ms;
     if (collect_points && config_.support.views > 0) {
-      points.vacated_W.push_back(
-          vacatedPoints(samples, frames[i], session.intrinsics(), config_.support));
+      vacated_W.push_back(vacatedPoints(samples, frames[i], session.intrinsics(), config_.support));
     }
     if (collect_points && config_.confirm.enabled) {
-      points.confirmed.push_back(
-          confirmedPoints(samples, frames[i], session.intrinsics(), config_.confirm));
+      const auto confirmed =
+          confirmedPoints(samples, frames[i], session.intrinsics(), config_.confirm);
+      run.confirmed.insert(run.confirmed.end(), confirmed.begin(), confirmed.end());
     }
     if (config_.with_reference) {
       SampleRaycast reference;
@@ -113,7 +113,7 @@ SelectionLoop::SamplePoints SelectionLoop::scoreSession(
     }
     if (progress) progress(i + 1);
   }
-  return points;
+  return vacated_W;
 }
 
 const SessionRun& SelectionLoop::addSession(const sim::SimSessionDataset& session,
@@ -138,17 +138,16 @@ const SessionRun& SelectionLoop::addSession(const sim::SimSessionDataset& sessio
       if (progress) progress(offset + done);
     };
   };
-  SamplePoints points;
   if (run.session > 0) {
     // The complete run fuses every keyframe anyway: no views to add, nothing skipped.
-    points = scoreSession(session, frames, run, config_.incremental, step(0));
+    const auto vacated_W = scoreSession(session, frames, run, config_.incremental, step(0));
     const bool add_views = config_.incremental && config_.support.views > 0;
     SelectionConfig selection = config_.selection;
     selection.thresholds = thresholds_;
     run.selection = selectKeyframes(run.scores, selection);
     if (add_views) {
-      run.support = supportViews(points.vacated_W, frames, session.intrinsics(),
-                                 run.selection.selected, config_.support);
+      run.support = supportViews(vacated_W, frames, session.intrinsics(), run.selection.selected,
+                                 config_.support);
       run.selection.support = std::move(run.support.added);  // its one home
     }
   }
@@ -162,9 +161,6 @@ const SessionRun& SelectionLoop::addSession(const sim::SimSessionDataset& sessio
   for (std::size_t i = 0; i < n; ++i) {
     if (run.fused[i]) fusion_.integrate(frames[i], session.intrinsics());
     if (progress) progress(n + i + 1);
-  }
-  for (const auto& confirmed : points.confirmed) {
-    run.confirmed.insert(run.confirmed.end(), confirmed.begin(), confirmed.end());
   }
   if (run.session == 0) {
     scoreSession(session, frames, run, false, {});

@@ -62,7 +62,7 @@ struct SessionRun {
   /// weight, where the latest observation is the better value (office: printer in session 2,
   /// 0.00 -> 0.43 of it found).
   std::vector<change::ConfirmedPoint> confirmed;
-  double score_device_ms = 0.0;     // raycast device time, summed
+  double score_device_ms = 0.0;  // raycast device time, summed
   std::size_t fusedCount() const;
 };
 
@@ -98,16 +98,12 @@ class SelectionLoop {
   const LoopConfig& config() const { return config_; }
 
  private:
-  /// Per keyframe, what its raycast shows beyond the scores (empty unless asked for).
-  struct SamplePoints {
-    std::vector<std::vector<Eigen::Vector3f>> vacated_W;        // change_support.h
-    std::vector<std::vector<change::ConfirmedPoint>> confirmed;  // confirmed_points.h
-  };
-  /// Scores every keyframe; with `collect_points`, also returns each keyframe's vacated points
-  /// (when support views are on) and confirmed points (when confirm is on).
-  SamplePoints scoreSession(const sim::SimSessionDataset& session,
-                            const std::vector<RgbdFrame>& frames, SessionRun& run,
-                            bool collect_points, const std::function<void(std::size_t)>& progress);
+  /// Scores every keyframe. With `collect_points`, also appends every keyframe's confirmed points
+  /// to run.confirmed (when confirm is on) and returns each keyframe's vacated points (when
+  /// support views are on; change_support.h), else nothing.
+  std::vector<std::vector<Eigen::Vector3f>> scoreSession(
+      const sim::SimSessionDataset& session, const std::vector<RgbdFrame>& frames, SessionRun& run,
+      bool collect_points, const std::function<void(std::size_t)>& progress);
   void recordTruth(const sim::SimSessionDataset& session, std::size_t index,
                    const sim::SimulatedFrame& frame, const TsdfMap& map, SessionRun& run);
   /// After a session's fusion: its world and what its fused keyframes saw join history_.
