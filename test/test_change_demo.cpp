@@ -152,7 +152,8 @@ TEST(ChangeDemo, DefaultRoomMeetsTheIssueTargets) {
   EXPECT_EQ(inc.images_per_session.size(), e.sessions.size() - 1);
   EXPECT_EQ(fused, inc.images.fused);
   for (const char* key : {"\"per_session\": [{\"fused\": ", "\"arrivals_incremental\": {",
-                          "\"instances\": [{\"session\": ", "\"carried_forward\": {"}) {
+                          "\"instances\": [{\"session\": ", "\"carried_forward\": {",
+                          "\"free_space\": {\"skipped_keyframes\": "}) {
     EXPECT_NE(report.incremental_json.find(key), std::string::npos) << key;
   }
   EXPECT_GE(inc.objects_incremental.found + 1, inc.objects_complete.found);
@@ -169,6 +170,45 @@ TEST(ChangeDemo, DefaultRoomMeetsTheIssueTargets) {
   EXPECT_EQ(found_complete, inc.objects_complete.found);
   EXPECT_EQ(found_incremental, inc.objects_incremental.found);
   EXPECT_GT(inc.carried.voxels, 0u) << "confirmed places carry observations forward";
+  // Free space comes from the skipped keyframes' vacated samples: one per 10 x 10 px cell at most.
+  EXPECT_EQ(inc.free_space.views * 640 * 480, inc.free_space_pixels);
+  EXPECT_LE(inc.free_space.samples * 100, inc.free_space_pixels);
+  fs::remove_all(options.out_dir);
+}
+
+// Issue 6's incremental target where the truth allows it: the shipped office with 240 keyframes
+// per session (296 of 960 later keyframes truly positive; at the demo's 60 almost half are, as
+// most of each is space the sparse keyframes left unmapped). With the demo's defaults: at most
+// 40 % of the images after the first session, >= 98 % of the complete map's coverage, and change
+// detection on the fused keyframes within one object of the complete run's, over every instance
+// and over arrivals, at the complete run's precision. Measured: 28.2 % of the images, 99.94 vs
+// 99.97 % coverage, 28 of 31 vs 29, arrivals 11 of 11 (about 8 min on 2 cores).
+TEST(ChangeDemo, OfficeWithDenseKeyframesMeetsTheIncrementalTargets) {
+  apps::DemoOptions options;
+  options.world = std::string(STRATA_WORLDS_DIR) + "/office.yaml";
+  options.frames = 240;
+  options.out_dir = freshDir("strata_change_demo_office").string();
+  options.quiet = true;
+  options.incremental = true;
+  const apps::DemoReport report = apps::runDemoPipeline(options);
+  ASSERT_TRUE(report.incremental.has_value());
+  const apps::IncrementalResult& inc = *report.incremental;
+  std::printf("[ select ] %s\n", report.incremental_summary.c_str());
+  for (const apps::InstanceOutcome& o : inc.instances) {
+    if (o.complete.found != o.incremental.found) {
+      std::printf("[ select ]   session %d %s: complete %d (%.2f), incremental %d (%.2f)\n",
+                  o.session, o.name.c_str(), o.complete.found, o.complete.coverage,
+                  o.incremental.found, o.incremental.coverage);
+    }
+  }
+  EXPECT_EQ(inc.images.total, 4u * 240u);
+  EXPECT_LE(inc.images.share(), 0.40);
+  EXPECT_GE(inc.coverage_incremental, 0.98 * inc.coverage_complete);
+  EXPECT_GE(inc.objects_complete.moved, 25u) << "the office's objects move between sessions";
+  EXPECT_GE(inc.objects_incremental.found + 1, inc.objects_complete.found);
+  EXPECT_GE(inc.arrivals_incremental.found + 1, inc.arrivals_complete.found);
+  EXPECT_GE(inc.objects_incremental.precision(), inc.objects_complete.precision());
+  EXPECT_GT(inc.free_space.voxels, 0u) << "skipped keyframes saw vacated places";
   fs::remove_all(options.out_dir);
 }
 

@@ -176,9 +176,9 @@ CLI::App* addDemoCommand(CLI::App& app, DemoOptions& o) {
   demo->add_option("--select-window", o.select.smoothing_window,
                    "With --incremental: moving-average window of the selection, keyframes (odd)")
       ->capture_default_str();
-  demo->add_flag(
-      "--no-change-views", [&o](std::int64_t) { o.select.change_views = false; },
-      "With --incremental: fuse only the selected keyframes, no extra views of vacated places");
+  demo->add_flag("--change-views", o.select.change_views,
+                 "With --incremental: also fuse keyframes that see vacated places, until each is "
+                 "seen by the change detector's minimum of frames");
   demo->add_option("--change-view-min-points", o.select.change_view_min_points,
                    "With --incremental: vacated points short of views a keyframe must pass to be "
                    "added as a view for change detection")
@@ -187,6 +187,10 @@ CLI::App* addDemoCommand(CLI::App& app, DemoOptions& o) {
       "--no-carry-forward", [&o](std::int64_t) { o.select.carry_forward = false; },
       "With --incremental: change detection on the fused keyframes only, nothing carried forward "
       "where keyframes confirmed the map");
+  demo->add_flag(
+      "--no-free-space", [&o](std::int64_t) { o.select.free_space = false; },
+      "With --incremental: change detection takes no free space from the vacated samples of "
+      "skipped keyframes");
   demo->add_option("--select-dilation", o.select.dilation,
                    "With --incremental: keyframes added on each side of a selected one")
       ->capture_default_str();

@@ -40,14 +40,16 @@ std::vector<std::size_t> indicesOf(const std::vector<std::uint8_t>& fused) {
   return out;
 }
 
-/// Change detection on the fused keyframes of every session. With `carry`, each session's layer
-/// also takes, before it ends, the latest observations around the points its keyframes
-/// confirmed (change/carry_forward.h); `carried` receives the counts.
+/// Change detection on the fused keyframes of every session. Before each session ends, its layer
+/// takes the free space its skipped keyframes saw through vacated places (options.free_space,
+/// change/carry_free.h), then the latest observations around the points its keyframes confirmed
+/// (options.carry_forward, change/carry_forward.h), never where it took free space.
 change::WorldEvaluation detectOnSelected(vk::Context& context, const sim::World& world,
                                          const Sessions& sessions, const MapConfig& change_map,
                                          const DiffRunInfo& info,
-                                         const selection::SelectionLoop& loop, bool carry,
-                                         bool quiet, change::CarryStats& carried) {
+                                         const selection::SelectionLoop& loop,
+                                         const IncrementalOptions& options, bool quiet,
+                                         IncrementalResult& r) {
   std::vector<SubsetDataset> subsets;
   std::size_t total = 0, done = 0;
   for (std::size_t s = 0; s < sessions.size(); ++s) {
@@ -56,24 +58,43 @@ change::WorldEvaluation detectOnSelected(vk::Context& context, const sim::World&
   }
   DiffPipeline pipeline(context, change_map, info.change, info.objects);
   const float min_weight = info.change.min_weight;
+  change::FreeSpaceConfig free_config;
+  free_config.cell_px = static_cast<float>(loop.config().scorer.sample_stride_px);
   TsdfMap latest(change_map);  // per voxel, the last session that observed it
-  // One download per session: the layer is carried into, then (as ended: endSession leaves a
-  // session's layer as it is) kept as the latest observations for the sessions after it.
-  const auto carry_forward = [&](change::ChangeDetector& detector, int session) {
+  // One download per session: the layer is edited, then (as ended: endSession leaves a session's
+  // layer as it is) kept as the latest observations for the sessions after it.
+  const auto before_end = [&](change::ChangeDetector& detector, int session) {
     TsdfMap layer = detector.sessionMap(session);
-    if (session > 0) {
-      const change::CarryStats stats =
-          change::carryObserved(latest, loop.sessions()[session].confirmed, min_weight, layer);
-      carried.points += stats.points;
-      carried.voxels += stats.voxels;
-      if (stats.voxels > 0) detector.replaceSessionMap(session, layer);
+    if (session > 0 && (options.free_space || options.carry_forward)) {
+      const selection::SessionRun& run = loop.sessions()[session];
+      change::VoxelSet own;
+      if (options.free_space) {
+        std::vector<change::VacatedView> skipped;
+        for (std::size_t k = 0; k < run.vacated_views.size(); ++k) {
+          if (!run.fused.at(k)) skipped.push_back(run.vacated_views[k]);
+        }
+        const CameraIntrinsics& camera = sessions[session]->session().intrinsics();
+        const change::FreeSpaceStats stats =
+            change::integrateFreeSpace(skipped, camera, free_config, layer, &own);
+        r.free_space_pixels +=
+            skipped.size() * static_cast<std::size_t>(camera.width_px) * camera.height_px;
+        r.free_space.views += stats.views;
+        r.free_space.samples += stats.samples;
+        r.free_space.voxels += stats.voxels;
+      }
+      if (options.carry_forward) {
+        const change::CarryStats stats =
+            change::carryObserved(latest, run.confirmed, min_weight, layer, &own);
+        r.carried.points += stats.points;
+        r.carried.voxels += stats.voxels;
+      }
+      detector.replaceSessionMap(session, layer);
     }
     change::keepLatestObserved(layer, min_weight, latest);
   };
   ProgressBar progress("change detection on selected keyframes", total, !quiet);
   for (const auto& subset : subsets) {
-    pipeline.addSession(subset, subset.name(), progress, done,
-                        carry ? DiffPipeline::BeforeEnd(carry_forward) : DiffPipeline::BeforeEnd());
+    pipeline.addSession(subset, subset.name(), progress, done, before_end);
   }
   progress.finish();
   const DiffResult result = pipeline.finish();
@@ -155,6 +176,7 @@ IncrementalResult runIncremental(vk::Context& context, const sim::World& world,
     c.support.views = options.change_views ? info.change.minFrames() : 0;
     c.support.min_points = options.change_view_min_points;
     c.confirm.enabled = incremental && options.carry_forward;
+    c.keep_vacated_views = incremental && options.free_space;
     return c;
   };
   selection::SelectionLoop full(context, configured(false));
@@ -190,8 +212,7 @@ IncrementalResult runIncremental(vk::Context& context, const sim::World& world,
   r.objects_complete = complete.totals;
   r.arrivals_complete = change::arrivalCounts(world, complete);
   const change::WorldEvaluation on_selected =
-      detectOnSelected(context, world, sessions, change_map, info, incremental,
-                       options.carry_forward, quiet, r.carried);
+      detectOnSelected(context, world, sessions, change_map, info, incremental, options, quiet, r);
   r.objects_incremental = on_selected.totals;
   r.arrivals_incremental = change::arrivalCounts(world, on_selected);
   r.instances = instanceOutcomes(world, complete, on_selected);
@@ -200,7 +221,7 @@ IncrementalResult runIncremental(vk::Context& context, const sim::World& world,
 }
 
 std::string summarizeIncremental(const IncrementalResult& r) {
-  char text[1600];
+  char text[2000];
   const selection::Confusion& ours = r.methods[0].confusion;
   const selection::Confusion& ncc = r.methods[1].confusion;
   const selection::Confusion& hist = r.methods[2].confusion;
@@ -219,7 +240,8 @@ std::string summarizeIncremental(const IncrementalResult& r) {
       "added as views of vacated places for change detection; fused keyframes against the "
       "truth: %s), surface coverage %.2f %% vs "
       "%.2f %% fusing all; change detection on the fused keyframes (%zu voxels carried forward "
-      "around %zu points the keyframes confirmed) found %zu of %zu moved "
+      "around %zu points the keyframes confirmed; free space from %zu vacated samples of %zu "
+      "skipped keyframes, %.3g %% of their pixels) found %zu of %zu moved "
       "objects (all keyframes: %zu of %zu); counting each moved object only in the sessions in "
       "which it changed, %zu of %zu (all keyframes: %zu of %zu). %.1f s.",
       100 * ours.recall(), 100 * ours.precision(), 100 * ours.accuracy(), 100 * ncc.recall(),
@@ -228,10 +250,11 @@ std::string summarizeIncremental(const IncrementalResult& r) {
       r.agreement.decision_mismatches, r.images.fused, r.images.total, 100 * r.images.share(),
       per_session.c_str(), r.change_views_added, r.fused_confusion.describe().c_str(),
       100 * r.coverage_incremental, 100 * r.coverage_complete, r.carried.voxels, r.carried.points,
-      r.objects_incremental.found,
-      r.objects_incremental.moved, r.objects_complete.found, r.objects_complete.moved,
-      r.arrivals_incremental.found, r.arrivals_incremental.arrivals, r.arrivals_complete.found,
-      r.arrivals_complete.arrivals, r.wall_s);
+      r.free_space.samples, r.free_space.views,
+      r.free_space_pixels > 0 ? 100.0 * r.free_space.samples / r.free_space_pixels : 0.0,
+      r.objects_incremental.found, r.objects_incremental.moved, r.objects_complete.found,
+      r.objects_complete.moved, r.arrivals_incremental.found, r.arrivals_incremental.arrivals,
+      r.arrivals_complete.found, r.arrivals_complete.arrivals, r.wall_s);
   return text;
 }
 

@@ -79,7 +79,11 @@ std::string incrementalJson(const IncrementalResult& r) {
       << ", \"added\": " << r.change_views_added << ", \"vacated_points\": " << r.vacated_points
       << ", \"short_of_views\": " << r.vacated_points_short
       << "}, \"carried_forward\": {\"confirmed_points\": " << r.carried.points
-      << ", \"voxels\": " << r.carried.voxels << "}, \"fused_vs_truth\": ";
+      << ", \"voxels\": " << r.carried.voxels
+      << "}, \"free_space\": {\"skipped_keyframes\": " << r.free_space.views
+      << ", \"vacated_samples\": " << r.free_space.samples
+      << ", \"pixels_of_skipped_keyframes\": " << r.free_space_pixels
+      << ", \"voxel_observations\": " << r.free_space.voxels << "}, \"fused_vs_truth\": ";
   const selection::Confusion& f = r.fused_confusion;
   out << "{\"recall\": " << f.recall() << ", \"precision\": " << f.precision()
       << ", \"accuracy\": " << f.accuracy()

@@ -19,7 +19,7 @@ void requireSameVoxelSize(const TsdfMap& a, const TsdfMap& b, const char* what) 
 }  // namespace
 
 CarryStats carryObserved(const TsdfMap& latest, const std::vector<ConfirmedPoint>& points,
-                         float min_weight, TsdfMap& session) {
+                         float min_weight, TsdfMap& session, const VoxelSet* own) {
   requireSameVoxelSize(latest, session, "carryObserved");
   const float voxel_m = session.config().voxel_size_m;
   CarryStats stats;
@@ -40,6 +40,7 @@ CarryStats carryObserved(const TsdfMap& latest, const std::vector<ConfirmedPoint
           if (from == nullptr || from->weight < min_weight) continue;
           const TsdfVoxel* present = session.findVoxel(v);
           if (present != nullptr && present->weight >= min_weight) continue;
+          if (own != nullptr && own->count(v) > 0) continue;
           session.allocateVoxel(v) = *from;
           ++stats.voxels;
         }

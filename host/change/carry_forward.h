@@ -20,6 +20,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "change/carry_free.h"
 #include "map/tsdf_map.h"
 
 namespace strata::change {
@@ -37,9 +38,12 @@ struct CarryStats {
 };
 
 /// Fills `session` (see the rule above). `latest` and `session` must have the same voxel size
-/// (InputError otherwise). Blocks are allocated in `session` where a voxel is carried.
+/// (InputError otherwise). Blocks are allocated in `session` where a voxel is carried. Voxels in
+/// *own (when non-null) are never carried into: the session has evidence of its own there below
+/// min_weight (free space seen through a vacated place, carry_free.h), and the latest observation
+/// is exactly what that evidence contradicts.
 CarryStats carryObserved(const TsdfMap& latest, const std::vector<ConfirmedPoint>& points,
-                         float min_weight, TsdfMap& session);
+                         float min_weight, TsdfMap& session, const VoxelSet* own = nullptr);
 
 /// After a session ended: its observed voxels (weight >= min_weight) replace latest's, so latest
 /// holds, per voxel, the last session that observed it.

@@ -53,14 +53,11 @@ int neighboursBeyond(const std::vector<std::uint8_t>& beyond, const SampleGrid& 
   return n;
 }
 
-}  // namespace
-
-std::vector<Eigen::Vector3f> vacatedPoints(const SampleRaycast& samples, const RgbdFrame& frame,
-                                           const CameraIntrinsics& k, const SupportConfig& config) {
+/// Per sample: 1 where its ray hit the map and the keyframe measures beyond the map's surface
+/// (by more than the tolerance, within the fusion's range).
+std::vector<std::uint8_t> samplesBeyond(const SampleRaycast& samples, const RgbdFrame& frame,
+                                        const SupportConfig& config) {
   const SampleGrid& grid = samples.grid;
-  const Eigen::Vector4f K(k.fx_px, k.fy_px, k.cx_px, k.cy_px);
-  const Eigen::Isometry3f T_W_C = frame.T_W_C.cast<float>();
-  // Which samples look beyond the map's surface.
   std::vector<std::uint8_t> beyond(static_cast<std::size_t>(grid.count()), 0);
   for (int gy = 0; gy < grid.height; ++gy) {
     for (int gx = 0; gx < grid.width; ++gx) {
@@ -72,6 +69,35 @@ std::vector<Eigen::Vector3f> vacatedPoints(const SampleRaycast& samples, const R
       beyond[s] = measured_m <= config.max_depth_m ? 1 : 0;
     }
   }
+  return beyond;
+}
+
+}  // namespace
+
+change::VacatedView vacatedView(const SampleRaycast& samples, const RgbdFrame& frame,
+                                const SupportConfig& config) {
+  const SampleGrid& grid = samples.grid;
+  const std::vector<std::uint8_t> beyond = samplesBeyond(samples, frame, config);
+  change::VacatedView view;
+  view.T_W_C = frame.T_W_C.cast<float>();
+  for (int gy = 0; gy < grid.height; ++gy) {
+    for (int gx = 0; gx < grid.width; ++gx) {
+      const std::size_t s = static_cast<std::size_t>(gy) * grid.width + gx;
+      if (!beyond[s]) continue;
+      const int u = grid.pixelU(gx), v = grid.pixelV(gy);
+      view.samples.push_back(
+          {static_cast<float>(u), static_cast<float>(v), samples.depth_m[s], frame.depth.at(u, v)});
+    }
+  }
+  return view;
+}
+
+std::vector<Eigen::Vector3f> vacatedPoints(const SampleRaycast& samples, const RgbdFrame& frame,
+                                           const CameraIntrinsics& k, const SupportConfig& config) {
+  const SampleGrid& grid = samples.grid;
+  const Eigen::Vector4f K(k.fx_px, k.fy_px, k.cx_px, k.cy_px);
+  const Eigen::Isometry3f T_W_C = frame.T_W_C.cast<float>();
+  const std::vector<std::uint8_t> beyond = samplesBeyond(samples, frame, config);
   std::vector<Eigen::Vector3f> points_W;
   for (int gy = 0; gy < grid.height; ++gy) {
     for (int gx = 0; gx < grid.width; ++gx) {

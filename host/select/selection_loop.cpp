@@ -40,6 +40,7 @@ LoopConfig demoLoopConfig(bool incremental) {
   c.support.max_depth_m = c.map.max_depth_m;
   c.confirm.enabled = incremental;
   c.confirm.max_depth_m = c.map.max_depth_m;
+  c.keep_vacated_views = incremental;
   return c;
 }
 
@@ -98,6 +99,9 @@ std::vector<std::vector<Eigen::Vector3f>> SelectionLoop::scoreSession(
     run.score_device_ms += device_ms;
     if (collect_points && config_.support.views > 0) {
       vacated_W.push_back(vacatedPoints(samples, frames[i], session.intrinsics(), config_.support));
+    }
+    if (collect_points && config_.keep_vacated_views) {
+      run.vacated_views.push_back(vacatedView(samples, frames[i], config_.support));
     }
     if (collect_points && config_.confirm.enabled) {
       const auto confirmed =

@@ -42,6 +42,9 @@ struct LoopConfig {
   /// Incremental, sessions >= 1: keep the points the session's keyframes confirmed
   /// (SessionRun::confirmed; off by default, on in demoLoopConfig).
   ConfirmConfig confirm;
+  /// Incremental, sessions >= 1: keep every keyframe's samples that look beyond the map
+  /// (SessionRun::vacated_views; off by default, on in demoLoopConfig).
+  bool keep_vacated_views = false;
 };
 
 struct SessionRun {
@@ -62,6 +65,9 @@ struct SessionRun {
   /// weight, where the latest observation is the better value (office: printer in session 2,
   /// 0.00 -> 0.43 of it found).
   std::vector<change::ConfirmedPoint> confirmed;
+  /// Incremental with keep_vacated_views, sessions >= 1, one per keyframe: its samples that look
+  /// beyond the map (change/carry_free.h integrates those of skipped keyframes as free space).
+  std::vector<change::VacatedView> vacated_views;
   double score_device_ms = 0.0;  // raycast device time, summed
   std::size_t fusedCount() const;
 };
@@ -99,8 +105,8 @@ class SelectionLoop {
 
  private:
   /// Scores every keyframe. With `collect_points`, also appends every keyframe's confirmed points
-  /// to run.confirmed (when confirm is on) and returns each keyframe's vacated points (when
-  /// support views are on; change_support.h), else nothing.
+  /// to run.confirmed (when confirm is on), keeps its vacated samples (keep_vacated_views) and
+  /// returns its vacated points (when support views are on; change_support.h), else nothing.
   std::vector<std::vector<Eigen::Vector3f>> scoreSession(
       const sim::SimSessionDataset& session, const std::vector<RgbdFrame>& frames, SessionRun& run,
       bool collect_points, const std::function<void(std::size_t)>& progress);
