@@ -1,6 +1,7 @@
 // Test entry point: fails any test during which the Vulkan validation layer reported an error.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <sstream>
 
 #include "vk/vk.h"
@@ -30,6 +31,9 @@ class ValidationErrorListener : public testing::EmptyTestEventListener {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // ctest runs two tests at once: two lavapipe threads each (unless the caller chose). Set here,
+  // not in CMake: gtest_discover_tests passes only the first variable of an ENVIRONMENT list.
+  setenv("LP_NUM_THREADS", "2", 0);
   testing::InitGoogleTest(&argc, argv);
   // Appended after the default printer so the failure is attributed to the test that caused it.
   testing::UnitTest::GetInstance()->listeners().Append(new ValidationErrorListener);
