@@ -91,7 +91,7 @@ TEST(FreeSpace, AgreesWithFusingTheKeyframeWhereItUpdates) {
     EXPECT_FLOAT_EQ(f->tsdf_m, g->tsdf_m);
     EXPECT_FLOAT_EQ(f->weight, g->weight);
     // Ground truth: free space within the band around the old face, in front of the wall.
-    const Eigen::Vector3f centre_C = T_C_W * ((v.cast<float>().array() + 0.5f) * kVoxel).matrix();
+    const Eigen::Vector3f centre_C = T_C_W * voxelCenter(v, kVoxel);
     EXPECT_NEAR(centre_C.z(), 1.5f, 0.13f + 1e-4f);
     EXPECT_GE(3.0f - centre_C.z(), truncation_m);
   }

@@ -69,15 +69,11 @@ change::WorldEvaluation detectOnSelected(vk::Context& context, const sim::World&
       const selection::SessionRun& run = loop.sessions()[session];
       change::VoxelSet own;
       if (options.free_space) {
-        std::vector<change::VacatedView> skipped;
-        for (std::size_t k = 0; k < run.vacated_views.size(); ++k) {
-          if (!run.fused.at(k)) skipped.push_back(run.vacated_views[k]);
-        }
         const CameraIntrinsics& camera = sessions[session]->session().intrinsics();
         const change::FreeSpaceStats stats =
-            change::integrateFreeSpace(skipped, camera, free_config, layer, &own);
+            change::integrateFreeSpace(run.vacated_views, camera, free_config, layer, &own);
         r.free_space_pixels +=
-            skipped.size() * static_cast<std::size_t>(camera.width_px) * camera.height_px;
+            stats.views * static_cast<std::size_t>(camera.width_px) * camera.height_px;
         r.free_space.views += stats.views;
         r.free_space.samples += stats.samples;
         r.free_space.voxels += stats.voxels;

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "kernels/camera_math.h"
 
 namespace strata::change {
 
@@ -15,14 +16,6 @@ void FreeSpaceConfig::validate() const {
   if (!(band_m > 0.0f) || !std::isfinite(band_m)) {
     throw InputError("free space band_m must be a positive number, got " + std::to_string(band_m));
   }
-}
-
-std::size_t VoxelIndexHash::operator()(const GlobalVoxelIndex& v) const {
-  // Three large odd multipliers: neighbouring voxels land far apart.
-  const auto x = static_cast<std::size_t>(static_cast<std::uint32_t>(v.x()));
-  const auto y = static_cast<std::size_t>(static_cast<std::uint32_t>(v.y()));
-  const auto z = static_cast<std::size_t>(static_cast<std::uint32_t>(v.z()));
-  return x * 73856093u ^ y * 19349663u ^ z * 83492791u;
 }
 
 namespace {
@@ -37,13 +30,13 @@ template <typename Visit>
 void forEachVoxelInCell(const Cell& cell, const Eigen::Isometry3f& T_W_C,
                         const Eigen::Isometry3f& T_C_W, const CameraIntrinsics& k, float voxel_m,
                         Visit&& visit) {
+  const Eigen::Vector4f K(k.fx_px, k.fy_px, k.cx_px, k.cy_px);
   Eigen::Vector3f lo = Eigen::Vector3f::Constant(INFINITY);
   Eigen::Vector3f hi = Eigen::Vector3f::Constant(-INFINITY);
   for (const float z : {cell.z_lo, cell.z_hi}) {
     for (const float u : {cell.u_lo, cell.u_hi}) {
       for (const float v : {cell.v_lo, cell.v_hi}) {
-        const Eigen::Vector3f p_C((u - k.cx_px) / k.fx_px * z, (v - k.cy_px) / k.fy_px * z, z);
-        const Eigen::Vector3f p_W = T_W_C * p_C;
+        const Eigen::Vector3f p_W = T_W_C * Eigen::Vector3f(pixelRay(u, v, K) * z);
         lo = lo.cwiseMin(p_W);
         hi = hi.cwiseMax(p_W);
       }
@@ -55,8 +48,7 @@ void forEachVoxelInCell(const Cell& cell, const Eigen::Isometry3f& T_W_C,
     for (int y = first.y(); y <= last.y(); ++y) {
       for (int x = first.x(); x <= last.x(); ++x) {
         const GlobalVoxelIndex v(x, y, z);
-        const Eigen::Vector3f centre_W = (v.cast<float>().array() + 0.5f) * voxel_m;
-        const Eigen::Vector3f centre_C = T_C_W * centre_W;
+        const Eigen::Vector3f centre_C = T_C_W * voxelCenter(v, voxel_m);
         const float depth = centre_C.z();
         if (!(depth >= cell.z_lo && depth <= cell.z_hi)) continue;
         const float u = k.fx_px * centre_C.x() / depth + k.cx_px;

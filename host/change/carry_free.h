@@ -53,10 +53,8 @@ struct FreeSpaceConfig {
   void validate() const;  // InputError naming the field
 };
 
-struct VoxelIndexHash {
-  std::size_t operator()(const GlobalVoxelIndex& v) const;
-};
-using VoxelSet = std::unordered_set<GlobalVoxelIndex, VoxelIndexHash>;
+/// Global voxel indices (the same type as block indices, so the map's block hash serves).
+using VoxelSet = std::unordered_set<GlobalVoxelIndex, BlockIndexHash>;
 
 struct FreeSpaceStats {
   std::size_t views = 0;    // views given

@@ -162,6 +162,14 @@ const SessionRun& SelectionLoop::addSession(const sim::SimSessionDataset& sessio
       run.fused[i] |= run.selection.support[i];
     }
   }
+  // Only the skipped keyframes' vacated samples are wanted: a fused keyframe gives its own.
+  if (!run.vacated_views.empty()) {
+    std::vector<change::VacatedView> skipped;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!run.fused[i]) skipped.push_back(std::move(run.vacated_views[i]));
+    }
+    run.vacated_views = std::move(skipped);
+  }
   for (std::size_t i = 0; i < n; ++i) {
     if (run.fused[i]) fusion_.integrate(frames[i], session.intrinsics());
     if (progress) progress(n + i + 1);

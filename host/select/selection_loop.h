@@ -42,7 +42,7 @@ struct LoopConfig {
   /// Incremental, sessions >= 1: keep the points the session's keyframes confirmed
   /// (SessionRun::confirmed; off by default, on in demoLoopConfig).
   ConfirmConfig confirm;
-  /// Incremental, sessions >= 1: keep every keyframe's samples that look beyond the map
+  /// Incremental, sessions >= 1: keep the skipped keyframes' samples that look beyond the map
   /// (SessionRun::vacated_views; off by default, on in demoLoopConfig).
   bool keep_vacated_views = false;
 };
@@ -65,8 +65,8 @@ struct SessionRun {
   /// weight, where the latest observation is the better value (office: printer in session 2,
   /// 0.00 -> 0.43 of it found).
   std::vector<change::ConfirmedPoint> confirmed;
-  /// Incremental with keep_vacated_views, sessions >= 1, one per keyframe: its samples that look
-  /// beyond the map (change/carry_free.h integrates those of skipped keyframes as free space).
+  /// Incremental with keep_vacated_views, sessions >= 1, one per skipped keyframe, in order: its
+  /// samples that look beyond the map (change/carry_free.h integrates them as free space).
   std::vector<change::VacatedView> vacated_views;
   double score_device_ms = 0.0;  // raycast device time, summed
   std::size_t fusedCount() const;
