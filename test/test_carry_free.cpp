@@ -5,6 +5,7 @@
 // vacated place (and not from two).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "change/carry_forward.h"
@@ -38,111 +39,236 @@ MapConfig fusionConfig() {
   return c;
 }
 
-constexpr float kCellPx = 4.0f;
+constexpr int kCellPx = 4;
 
 /// Grid samples (every kCellPx, offset half a cell) inside pixel box [u0, u1) x [v0, v1).
-std::vector<VacatedSample> gridSamples(int u0, int u1, int v0, int v1, float surface_m,
-                                       float measured_m) {
+std::vector<VacatedSample> gridSamples(int u0, int u1, int v0, int v1, float surface_m) {
   std::vector<VacatedSample> out;
-  for (int v = 2; v < 48; v += 4) {
-    for (int u = 2; u < 64; u += 4) {
+  for (int v = 2; v < 48; v += kCellPx) {
+    for (int u = 2; u < 64; u += kCellPx) {
       if (u < u0 || u >= u1 || v < v0 || v >= v1) continue;
-      out.push_back({static_cast<float>(u), static_cast<float>(v), surface_m, measured_m});
+      out.push_back({u, v, surface_m});
     }
   }
   return out;
 }
 
-FreeSpaceConfig cellConfig() {
+FreeSpaceConfig placeConfig(float radius_m = 0.3f) {
   FreeSpaceConfig c;
   c.cell_px = kCellPx;
+  c.place_radius_m = radius_m;
   return c;
 }
 
-TEST(FreeSpace, AgreesWithFusingTheKeyframeWhereItUpdates) {
-  // A box's front face stood 1.5 m in front of the camera; now the camera sees a wall at 3 m.
+/// A view of `samples` whose keyframe measured `depth`, kept around them as the selection does.
+VacatedView viewOf(const Eigen::Isometry3f& T_W_C, std::vector<VacatedSample> samples,
+                   const DepthImage& depth, const FreeSpaceConfig& config = placeConfig()) {
+  VacatedView view{T_W_C, std::move(samples), DepthTiles(config.cell_px)};
+  keepDepthAround(depth, smallCamera(), config, view);
+  return view;
+}
+
+/// Camera z and nearest pixel of a world point.
+struct Projected {
+  float z_m;
+  int u_px, v_px;
+};
+Projected project(const Eigen::Isometry3f& T_C_W, const Eigen::Vector3f& p_W) {
   const CameraIntrinsics k = smallCamera();
-  const Eigen::Isometry3d T_W_C = Eigen::Isometry3d(Eigen::Translation3d(0.1, -0.2, 0.3));
-  VacatedView view;
-  view.T_W_C = T_W_C.cast<float>();
-  view.samples = gridSamples(20, 40, 16, 32, 1.5f, 3.0f);
-  ASSERT_EQ(view.samples.size(), 20u);
+  const Eigen::Vector3f c = T_C_W * p_W;
+  return {c.z(), static_cast<int>(std::floor(k.fx_px * c.x() / c.z() + k.cx_px + 0.5f)),
+          static_cast<int>(std::floor(k.fy_px * c.y() / c.z() + k.cy_px + 0.5f))};
+}
+
+TEST(FreeSpace, DepthTilesKeepTheCellsAroundTheSamplesOnly) {
+  DepthImage depth(10, 7);
+  for (int v = 0; v < 7; ++v) {
+    for (int u = 0; u < 10; ++u) depth.at(u, v) = 1.0f + 0.1f * u + 0.01f * v;
+  }
+  DepthTiles tiles(4);
+  tiles.keep(depth, 7, 9, 5, 6);   // pixels u 7..8, v 5: tiles (1, 1) and (2, 1)
+  tiles.keep(depth, 8, 12, 4, 6);  // tile (2, 1) again: kept once
+  EXPECT_EQ(tiles.tileCount(), 2u);
+  EXPECT_EQ(tiles.pixelCount(), 32u);
+  for (int v = 0; v < 7; ++v) {
+    for (int u = 0; u < 10; ++u) {
+      if (u >= 4 && v >= 4) {
+        EXPECT_FLOAT_EQ(tiles.at(u, v), depth.at(u, v)) << u << ", " << v;
+      } else {
+        EXPECT_TRUE(std::isnan(tiles.at(u, v))) << u << ", " << v;
+      }
+    }
+  }
+  EXPECT_TRUE(std::isnan(tiles.at(10, 5))) << "the tile reaches past the image";
+  EXPECT_TRUE(std::isnan(tiles.at(5, 8)));
+  EXPECT_TRUE(std::isnan(tiles.at(-1, 5)));
+  tiles.keep(depth, -5, 0, 0, 3);  // empty after clipping
+  EXPECT_EQ(tiles.tileCount(), 2u);
+  EXPECT_THROW(DepthTiles(0), InputError);
+}
+
+TEST(FreeSpace, KeepsTheDepthWhereThePlaceCanProject) {
+  const CameraIntrinsics k = smallCamera();
+  const DepthImage depth(k.width_px, k.height_px, 3.0f);
+  // A sample at 2 m: the 0.3 m place projects within 40 * 0.3 / 1.7 = 7.06 px, so 8 px.
+  const VacatedView view = viewOf(Eigen::Isometry3f::Identity(), {{30, 22, 2.0f}}, depth);
+  EXPECT_FLOAT_EQ(view.depth.at(22, 14), 3.0f);
+  EXPECT_FLOAT_EQ(view.depth.at(38, 30), 3.0f);
+  // Tiles of 4 px aligned at 0: pixels 20..39 x 12..31 are kept, no more.
+  EXPECT_EQ(view.depth.tileCount(), 5u * 5u);
+  EXPECT_TRUE(std::isnan(view.depth.at(19, 22)));
+  EXPECT_TRUE(std::isnan(view.depth.at(40, 22)));
+  // Nearer, the place covers more of the image.
+  const VacatedView near = viewOf(Eigen::Isometry3f::Identity(), {{30, 22, 0.5f}}, depth);
+  EXPECT_GT(near.depth.tileCount(), view.depth.tileCount());
+}
+
+TEST(FreeSpace, AgreesWithFusingTheKeyframeWhereItUpdates) {
+  // A box was last observed 1.4 to 1.7 m in front of the camera. Now the camera sees a wall at
+  // 3 m through its place and, right of pixel column 33, a new board at 1.62 m.
+  const CameraIntrinsics k = smallCamera();
+  const Eigen::Isometry3f T_W_C(Eigen::Translation3f(0.1f, -0.2f, 0.3f));
+  const Eigen::AlignedBox3d box(Eigen::Vector3d(-0.1, -0.35, 1.7),
+                                Eigen::Vector3d(0.3, -0.05, 2.0));
+  const TsdfMap place = test::makeSdfMap(
+      [&](const Eigen::Vector3d& p) { return test::boxSdf(p, box); }, {-0.5, -0.8, 1.2},
+      {0.7, 0.4, 2.4}, kVoxel, [](const Eigen::Vector3d&) { return true; });
+  DepthImage depth(k.width_px, k.height_px, 3.0f);
+  for (int v = 0; v < k.height_px; ++v) {
+    for (int u = 33; u < k.width_px; ++u) depth.at(u, v) = 1.62f;
+  }
+  // The box's face spans u 26..37, v 19..28 at 1.4 m.
+  const VacatedView view = viewOf(T_W_C, gridSamples(26, 37, 19, 28, 1.4f), depth);
+  ASSERT_EQ(view.samples.size(), 6u);
   TsdfMap free(fusionConfig());
   VoxelSet updated;
-  const FreeSpaceStats stats = integrateFreeSpace({view}, k, cellConfig(), free, &updated);
+  const FreeSpaceStats stats = integrateFreeSpace({view}, k, placeConfig(), place, free, &updated);
   EXPECT_EQ(stats.views, 1u);
-  EXPECT_EQ(stats.samples, 20u);
+  EXPECT_EQ(stats.samples, 6u);
   EXPECT_EQ(stats.voxels, updated.size());
-  // The band is 2 x 0.13 m deep; the cells cover 20 x 16 px = 0.75 x 0.6 m at 1.5 m.
-  EXPECT_GT(updated.size(), 4000u);
+  EXPECT_EQ(stats.depth_pixels, view.depth.pixelCount());
+  EXPECT_GT(updated.size(), 2000u) << "most of the box's surface band";
 
   RgbdFrame frame;
-  frame.T_W_C = T_W_C;
-  frame.depth = DepthImage(k.width_px, k.height_px, 3.0f);
+  frame.T_W_C = T_W_C.cast<double>();
+  frame.depth = depth;
   TsdfMap fused(fusionConfig());
   integrateFrameReference(fused, frame, k, 1);
   const float truncation_m = fusionConfig().truncationDistance();
-  const Eigen::Isometry3f T_C_W = view.T_W_C.inverse();
+  const Eigen::Isometry3f T_C_W = T_W_C.inverse();
+  int before_the_board = 0;
   for (const GlobalVoxelIndex& v : updated) {
     const TsdfVoxel* f = free.findVoxel(v);
     const TsdfVoxel* g = fused.findVoxel(v);
     ASSERT_NE(f, nullptr);
-    ASSERT_NE(g, nullptr) << "fusing the keyframe touches every voxel the samples update";
+    ASSERT_NE(g, nullptr) << "fusing the keyframe touches every voxel the view updates";
     EXPECT_FLOAT_EQ(f->tsdf_m, g->tsdf_m);
     EXPECT_FLOAT_EQ(f->weight, g->weight);
-    // Ground truth: free space within the band around the old face, in front of the wall.
-    const Eigen::Vector3f centre_C = T_C_W * voxelCenter(v, kVoxel);
-    EXPECT_NEAR(centre_C.z(), 1.5f, 0.13f + 1e-4f);
-    EXPECT_GE(3.0f - centre_C.z(), truncation_m);
+    // Ground truth: the box's place, now free, in front of what was measured.
+    const Eigen::Vector3f centre_W = voxelCenter(v, kVoxel);
+    EXPECT_LT(test::boxSdf(centre_W.cast<double>(), box), truncation_m);
+    const Projected p = project(T_C_W, centre_W);
+    EXPECT_GE(depth.at(p.u_px, p.v_px) - p.z_m, truncation_m);
+    if (p.u_px >= 33) ++before_the_board;
   }
+  EXPECT_GT(before_the_board, 50) << "the board leaves the box's front free";
+  // Everything of the box's surface band within the place whose pixel shows the wall is updated.
+  int missed = 0;
+  for (const auto& [b, block] : place.blocks()) {
+    for (int i = 0; i < kVoxelsPerBlock; ++i) {
+      const GlobalVoxelIndex v = b * kBlockEdge + Eigen::Vector3i(i % 8, i / 8 % 8, i / 64);
+      if (!(block[i].weight > 0.0f) || !(block[i].tsdf_m < truncation_m)) continue;
+      const Projected p = project(T_C_W, voxelCenter(v, kVoxel));
+      if (p.u_px < 0 || p.v_px < 0 || p.u_px >= k.width_px || p.v_px >= k.height_px) continue;
+      const bool near_a_sample =
+          (voxelCenter(v, kVoxel) - T_W_C * Eigen::Vector3f(0.1f, 0.0f, 1.4f)).norm() < 0.2f;
+      if (near_a_sample && depth.at(p.u_px, p.v_px) - p.z_m >= truncation_m)
+        missed += updated.count(v) == 0;
+    }
+  }
+  EXPECT_EQ(missed, 0);
+
+  // A smaller place: fewer voxels, all among the larger place's.
+  VoxelSet small;
+  TsdfMap free_small(fusionConfig());
+  integrateFreeSpace({view}, k, placeConfig(0.1f), place, free_small, &small);
+  EXPECT_GT(small.size(), 0u);
+  EXPECT_LT(small.size(), updated.size());
+  for (const GlobalVoxelIndex& v : small) EXPECT_EQ(updated.count(v), 1u);
 }
 
 TEST(FreeSpace, CountsOneObservationPerViewAndStopsShortOfTheMeasuredSurface) {
   const CameraIntrinsics k = smallCamera();
-  VacatedView view;
-  // The measured wall lies 0.15 m behind the old face: the band ends truncation (8 cm) before it.
-  view.samples = gridSamples(28, 36, 20, 28, 1.0f, 1.15f);
+  // Something was last observed 0.9 to 1.2 m in front of the camera; the wall now measured lies
+  // at 1.15 m: only what lies truncation (8 cm) before it is free.
+  TsdfMap place(fusionConfig());
+  for (int z = 45; z < 60; ++z) {
+    for (int y = -5; y <= 5; ++y) {
+      for (int x = -5; x <= 5; ++x) place.allocateVoxel({x, y, z}) = TsdfVoxel{-0.01f, 5.0f, 0u};
+    }
+  }
+  const DepthImage wall(k.width_px, k.height_px, 1.15f);
+  const VacatedView view =
+      viewOf(Eigen::Isometry3f::Identity(), gridSamples(28, 36, 20, 28, 1.0f), wall);
   TsdfMap map(fusionConfig());
   const GlobalVoxelIndex centre(0, 0, 48);  // on the optical axis at z = 0.97 m
   map.allocateVoxel(centre) = TsdfVoxel{-0.02f, 1.0f, 9u};
   VoxelSet updated;
-  // Two overlapping copies of the samples in one view still count once per voxel.
+  // Two copies of the samples in one view still count once per voxel.
   VacatedView doubled = view;
   doubled.samples.insert(doubled.samples.end(), view.samples.begin(), view.samples.end());
-  integrateFreeSpace({doubled, view}, k, cellConfig(), map, &updated);
+  integrateFreeSpace({doubled, view}, k, placeConfig(), place, map, &updated);
   const TsdfVoxel* voxel = map.findVoxel(centre);
   ASSERT_NE(voxel, nullptr);
   EXPECT_FLOAT_EQ(voxel->weight, 3.0f);
   EXPECT_NEAR(voxel->tsdf_m, (-0.02f + 2 * 0.08f) / 3.0f, 1e-6f);
   EXPECT_EQ(voxel->color_rgba, 9u) << "free space carries no colour";
+  EXPECT_FALSE(updated.empty());
   for (const GlobalVoxelIndex& v : updated) {
     EXPECT_LE((v.z() + 0.5f) * kVoxel, 1.15f - 0.08f + 1e-5f);
-    EXPECT_GE((v.z() + 0.5f) * kVoxel, 1.0f - 0.13f - 1e-5f);
+    EXPECT_NE(place.findVoxel(v), nullptr) << "only what was last observed";
   }
 }
 
 TEST(FreeSpace, BadInputIsSkippedOrNamed) {
   const CameraIntrinsics k = smallCamera();
+  TsdfMap place(fusionConfig());
+  for (int z = 40; z < 60; ++z) {
+    for (int y = -12; y <= 12; ++y) {
+      for (int x = -30; x <= 16; ++x) place.allocateVoxel({x, y, z}) = TsdfVoxel{0.0f, 5.0f, 0u};
+    }
+  }
+  // The depth lies in front of the surface left of column 40, beyond the fusion's range right
+  // of it.
+  DepthImage depth(k.width_px, k.height_px);
+  for (int v = 0; v < k.height_px; ++v) {
+    for (int u = 0; u < k.width_px; ++u) depth.at(u, v) = u < 40 ? 0.5f : 9.0f;
+  }
+  const FreeSpaceConfig config = placeConfig(0.05f);
+  VacatedView bad =
+      viewOf(Eigen::Isometry3f::Identity(), {{30, 10, 1.0f}, {50, 30, 1.0f}}, depth, config);
+  bad.samples.push_back({10, 30, NAN});   // no surface
+  bad.samples.push_back({10, 10, 1.0f});  // no depth kept there
   TsdfMap map(fusionConfig());
-  VacatedView bad_samples;
-  bad_samples.samples = {{NAN, 10.0f, 1.0f, 2.0f},
-                         {10.0f, 10.0f, NAN, 2.0f},
-                         {10.0f, 10.0f, 1.0f, NAN},
-                         {10.0f, 10.0f, 2.0f, 1.0f},   // measured in front: nothing free
-                         {10.0f, 10.0f, 1.0f, 9.0f}};  // beyond the fusion's range
-  const FreeSpaceStats stats = integrateFreeSpace({bad_samples}, k, cellConfig(), map);
-  EXPECT_EQ(stats.samples, 5u);
+  const FreeSpaceStats stats = integrateFreeSpace({bad}, k, config, place, map);
+  EXPECT_EQ(stats.samples, 4u);
   EXPECT_EQ(stats.voxels, 0u);
   EXPECT_EQ(map.blockCount(), 0u);
-  VacatedView bad_pose = bad_samples;
+  VacatedView bad_pose = bad;
   bad_pose.T_W_C.translation().x() = NAN;
-  EXPECT_THROW(integrateFreeSpace({bad_pose}, k, cellConfig(), map), InputError);
+  EXPECT_THROW(integrateFreeSpace({bad_pose}, k, config, place, map), InputError);
+  MapConfig coarse;
+  coarse.voxel_size_m = 0.05f;
+  EXPECT_THROW(integrateFreeSpace({bad}, k, config, TsdfMap(coarse), map), InputError);
+  for (const float radius : {0.0f, NAN, 3.0f}) {
+    FreeSpaceConfig bad_config;
+    bad_config.place_radius_m = radius;
+    EXPECT_THROW(integrateFreeSpace({}, k, bad_config, place, map), InputError) << radius;
+    EXPECT_THROW(keepDepthAround(depth, k, bad_config, bad), InputError) << radius;
+  }
   FreeSpaceConfig bad_config;
-  bad_config.band_m = 0.0f;
-  EXPECT_THROW(integrateFreeSpace({}, k, bad_config, map), InputError);
-  bad_config = FreeSpaceConfig{};
-  bad_config.cell_px = NAN;
-  EXPECT_THROW(integrateFreeSpace({}, k, bad_config, map), InputError);
+  bad_config.cell_px = 0;
+  EXPECT_THROW(integrateFreeSpace({}, k, bad_config, place, map), InputError);
 }
 
 TEST(FreeSpace, CarryingForwardLeavesTheSessionsOwnEvidenceAlone) {
@@ -171,30 +297,32 @@ Eigen::Isometry3f lookingDown(const Eigen::Vector3f& eye_W) {
   return T;
 }
 
-/// The samples of a camera looking down whose rays met box A before the floor (z = 0): the box's
-/// surface and the floor's depth, from exact ray intersections.
+/// The samples of a camera looking down whose rays met box A before the floor (z = 0), with the
+/// box's surface there, and the floor's depth it measures now that the box is gone, from exact ray
+/// intersections.
 VacatedView boxVacatedView(const Eigen::Vector3f& eye_W, const CameraIntrinsics& k) {
-  VacatedView view;
-  view.T_W_C = lookingDown(eye_W);
+  const Eigen::Isometry3f T_W_C = lookingDown(eye_W);
   const Eigen::AlignedBox3f box = kBoxA.cast<float>();
-  for (int v = 2; v < k.height_px; v += 4) {
-    for (int u = 2; u < k.width_px; u += 4) {
+  std::vector<VacatedSample> samples;
+  DepthImage floor(k.width_px, k.height_px);
+  for (int v = 0; v < k.height_px; ++v) {
+    for (int u = 0; u < k.width_px; ++u) {
       const Eigen::Vector3f ray_C((u - k.cx_px) / k.fx_px, (v - k.cy_px) / k.fy_px, 1.0f);
-      const Eigen::Vector3f dir_W = view.T_W_C.linear() * ray_C;  // advances 1 in camera z
-      float t_in = 0.0f, t_out = INFINITY;                        // slab intersection, t = camera z
+      const Eigen::Vector3f dir_W = T_W_C.linear() * ray_C;  // advances 1 in camera z
+      const float floor_t = eye_W.z() / -dir_W.z();
+      floor.at(u, v) = floor_t;
+      if (u % kCellPx != 2 || v % kCellPx != 2) continue;  // grid samples only
+      float t_in = 0.0f, t_out = INFINITY;                 // slab intersection, t = camera z
       for (int a = 0; a < 3; ++a) {
         const float t0 = (box.min()[a] - eye_W[a]) / dir_W[a];
         const float t1 = (box.max()[a] - eye_W[a]) / dir_W[a];
         t_in = std::max(t_in, std::min(t0, t1));
         t_out = std::min(t_out, std::max(t0, t1));
       }
-      const float floor_t = eye_W.z() / -dir_W.z();
-      if (t_in < t_out && t_in < floor_t) {
-        view.samples.push_back({static_cast<float>(u), static_cast<float>(v), t_in, floor_t});
-      }
+      if (t_in < t_out && t_in < floor_t) samples.push_back({u, v, t_in});
     }
   }
-  return view;
+  return viewOf(T_W_C, std::move(samples), floor);
 }
 
 TEST(FreeSpace, ThreeUnfusedViewsOfAVacatedPlaceLetTheDetectorFindTheEarlierInstance) {
@@ -223,7 +351,9 @@ TEST(FreeSpace, ThreeUnfusedViewsOfAVacatedPlaceLetTheDetectorFindTheEarlierInst
     const int second = detector.addSessionMap(floor_map(false, away_from_box));
     TsdfMap layer = detector.sessionMap(second);
     const std::vector<VacatedView> used(views.begin(), views.begin() + view_count);
-    const FreeSpaceStats stats = integrateFreeSpace(used, k, cellConfig(), layer);
+    // The place: what session 0 last observed.
+    const FreeSpaceStats stats =
+        integrateFreeSpace(used, k, placeConfig(), detector.sessionMap(0), layer);
     EXPECT_EQ(stats.voxels > 0, view_count > 0);
     detector.replaceSessionMap(second, layer);
     detector.endSession(second);

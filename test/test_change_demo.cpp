@@ -153,7 +153,8 @@ TEST(ChangeDemo, DefaultRoomMeetsTheIssueTargets) {
   EXPECT_EQ(fused, inc.images.fused);
   for (const char* key : {"\"per_session\": [{\"fused\": ", "\"arrivals_incremental\": {",
                           "\"instances\": [{\"session\": ", "\"carried_forward\": {",
-                          "\"free_space\": {\"skipped_keyframes\": "}) {
+                          "\"free_space\": {\"skipped_keyframes\": ", "\"shared_samples\": ",
+                          "\"depth_pixels_kept\": "}) {
     EXPECT_NE(report.incremental_json.find(key), std::string::npos) << key;
   }
   EXPECT_GE(inc.objects_incremental.found + 1, inc.objects_complete.found);
@@ -170,9 +171,14 @@ TEST(ChangeDemo, DefaultRoomMeetsTheIssueTargets) {
   EXPECT_EQ(found_complete, inc.objects_complete.found);
   EXPECT_EQ(found_incremental, inc.objects_incremental.found);
   EXPECT_GT(inc.carried.voxels, 0u) << "confirmed places carry observations forward";
-  // Free space comes from the skipped keyframes' vacated samples: one per 10 x 10 px cell at most.
+  // Free space comes from the skipped keyframes' vacated samples (their own, one per 10 x 10 px
+  // cell at most, and those shared from other keyframes) and their depth kept where the place
+  // around each can project: some of their pixels, not all.
   EXPECT_EQ(inc.free_space.views * 640 * 480, inc.free_space_pixels);
-  EXPECT_LE(inc.free_space.samples * 100, inc.free_space_pixels);
+  EXPECT_LE(inc.free_space_shared_samples, inc.free_space.samples);
+  EXPECT_LE((inc.free_space.samples - inc.free_space_shared_samples) * 100, inc.free_space_pixels);
+  EXPECT_GT(inc.free_space.depth_pixels, 0u);
+  EXPECT_LT(inc.free_space.depth_pixels, inc.free_space_pixels);
   fs::remove_all(options.out_dir);
 }
 

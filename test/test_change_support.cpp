@@ -63,6 +63,82 @@ TEST(ChangeSupport, VacatedPointsAreTheMapsSurfaceWhereTheKeyframeSeesBeyondIt) 
   EXPECT_TRUE(passesPoint(frame, camera(), points[0], config));
 }
 
+TEST(ChangeSupport, AVacatedViewKeepsTheSampleAndTheDepthAroundIt) {
+  const SupportConfig config;
+  RgbdFrame frame = wallFrame(0.0);
+  for (int v = 0; v < camera().height_px; ++v) {
+    for (int u = 0; u < camera().width_px; ++u)
+      frame.depth.at(u, v) = 2.0f + 0.0005f * u;  // within the tolerance
+  }
+  SampleRaycast samples;
+  samples.grid = SampleGrid::of(camera(), 40);  // 4 x 3 samples, cells of 40 px
+  const std::size_t n = samples.grid.count();
+  samples.hit.assign(n, 1);
+  samples.depth_m.assign(n, 2.0f);
+  samples.depth_m[5] = 1.5f;  // sample (1, 1), pixel (60, 60): an object stood there
+  for (const float radius_m : {0.05f, 0.3f}) {
+    change::FreeSpaceConfig free_space;
+    free_space.cell_px = 40;
+    free_space.place_radius_m = radius_m;
+    const change::VacatedView view = vacatedView(samples, frame, camera(), config, free_space);
+    const bool small = radius_m < 0.1f;
+    ASSERT_EQ(view.samples.size(), 1u);
+    EXPECT_EQ(view.samples[0].u_px, 60);
+    EXPECT_EQ(view.samples[0].v_px, 60);
+    EXPECT_FLOAT_EQ(view.samples[0].surface_m, 1.5f);
+    EXPECT_TRUE(view.T_W_C.isApprox(frame.T_W_C.cast<float>()));
+    // Where the place can project: within 100 * 0.05 / 1.45 = 3.4 px, inside its cell (pixels
+    // 40..79); within 100 * 0.3 / 1.2 = 25 px, on the 3 x 3 cells around it.
+    EXPECT_EQ(view.depth.tileCount(), small ? 1u : 9u);
+    EXPECT_FLOAT_EQ(view.depth.at(40, 79), frame.depth.at(40, 79));
+    EXPECT_EQ(std::isnan(view.depth.at(39, 60)), small);
+    EXPECT_EQ(std::isnan(view.depth.at(119, 119)), small);
+    EXPECT_TRUE(std::isnan(view.depth.at(120, 60)));
+  }
+}
+
+TEST(ChangeSupport, SkippedKeyframesTakeTheVacatedPlacesTheyLookThrough) {
+  const SupportConfig config;
+  const CameraIntrinsics k = camera();
+  // Keyframe 0 found a vacated place: at pixel (60, 60) the map's surface stood at 1.5 m, in
+  // front of the wall it measures at 2 m. Keyframe 1 (0.3 m to the side) looks through that
+  // place too; keyframe 2 sees a new object in front of it; keyframe 3 looks away.
+  std::vector<RgbdFrame> frames{wallFrame(0.0), wallFrame(0.3), wallFrame(0.3),
+                                wallFrame(0.0, false)};
+  for (int v = 0; v < k.height_px; ++v) {
+    for (int u = 0; u < k.width_px; ++u) frames[2].depth.at(u, v) = 1.45f;
+  }
+  std::vector<change::VacatedView> views(frames.size());
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    views[i].T_W_C = frames[i].T_W_C.cast<float>();
+    views[i].depth = change::DepthTiles(10);
+  }
+  views[0].samples = {{60, 60, 1.5f}, {60, 60, 1.5f}};  // the same place twice: shared once
+  change::FreeSpaceConfig free_space;
+  free_space.place_radius_m = 0.05f;  // 100 * 0.05 / 1.45: 4 px around, inside one cell
+  const std::size_t added = shareVacatedPlaces(views, frames, {1, 1, 1, 1}, k, config, free_space);
+  EXPECT_EQ(added, 1u);
+  ASSERT_EQ(views[1].samples.size(), 1u);
+  EXPECT_TRUE(views[2].samples.empty()) << "measured in front of the place: not looked through";
+  EXPECT_TRUE(views[3].samples.empty()) << "behind the camera";
+  // The point (x -0.3 m from keyframe 1 at z 1.5) projects to u = 60 - 0.3 / 1.5 * 100 = 40:
+  // cell 4, centre 45.
+  EXPECT_EQ(views[1].samples[0].u_px, 45);
+  EXPECT_EQ(views[1].samples[0].v_px, 65);
+  EXPECT_NEAR(views[1].samples[0].surface_m, 1.5f, 1e-5f);
+  EXPECT_EQ(views[1].depth.tileCount(), 1u) << "the depth of its cell is kept";
+  EXPECT_FLOAT_EQ(views[1].depth.at(45, 65), 2.0f);
+  EXPECT_EQ(views[0].samples.size(), 2u) << "a view does not take its own samples again";
+  // Views that are not targets take nothing; mismatched lists are named.
+  std::vector<change::VacatedView> again = views;
+  again[1].samples.clear();
+  EXPECT_EQ(shareVacatedPlaces(again, frames, {0, 0, 0, 0}, k, config, free_space), 0u);
+  EXPECT_TRUE(again[1].samples.empty());
+  EXPECT_THROW(shareVacatedPlaces(again, frames, {1, 1}, k, config, free_space), InputError);
+  free_space.cell_px = 0;
+  EXPECT_THROW(shareVacatedPlaces(again, frames, {1, 1, 1, 1}, k, config, free_space), InputError);
+}
+
 TEST(ChangeSupport, MinNeighboursKeepsAreasAndDropsLoneSamples) {
   const RgbdFrame frame = wallFrame(0.0);
   SampleRaycast samples;

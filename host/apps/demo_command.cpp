@@ -191,6 +191,15 @@ CLI::App* addDemoCommand(CLI::App& app, DemoOptions& o) {
       "--no-free-space", [&o](std::int64_t) { o.select.free_space = false; },
       "With --incremental: change detection takes no free space from the vacated samples of "
       "skipped keyframes");
+  demo->add_flag(
+      "--no-shared-vacated", [&o](std::int64_t) { o.select.free_space_shared = false; },
+      "With --incremental: a skipped keyframe's free space comes from its own vacated samples "
+      "only, not also from the places other keyframes found that it looks through");
+  demo->add_option("--free-space-radius", o.select.free_space_radius_m,
+                   "With --incremental: metres around each vacated sample in which the last "
+                   "observations are tested against skipped keyframes' depth for free space")
+      ->check(CLI::Range(0.01, 2.0))
+      ->capture_default_str();
   demo->add_option("--select-dilation", o.select.dilation,
                    "With --incremental: keyframes added on each side of a selected one")
       ->capture_default_str();

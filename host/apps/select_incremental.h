@@ -45,9 +45,10 @@ struct IncrementalResult {
   change::CarryStats carried;
   /// Free space the skipped keyframes saw through vacated places, integrated into the sessions'
   /// change-detection layers from their vacated samples (change/carry_free.h), over the sessions;
-  /// free_space_pixels: all pixels of those keyframes, to put the samples in proportion.
+  /// free_space_pixels: all pixels of those keyframes, to put the depth kept in proportion.
   change::FreeSpaceStats free_space;
   std::size_t free_space_pixels = 0;
+  std::size_t free_space_shared_samples = 0;  // of free_space.samples, shared among keyframes
   /// The fused keyframes (selected or added) against the truth.
   selection::Confusion fused_confusion;
   double coverage_complete = 0.0;         // surface coverage of the map fused from every keyframe
@@ -82,6 +83,10 @@ struct IncrementalOptions {
   /// Integrate the free space that skipped keyframes saw through vacated places into change
   /// detection, from their vacated samples (change/carry_free.h).
   bool free_space = true;
+  /// ... in the place within this radius of each vacated sample (metres).
+  float free_space_radius_m = change::FreeSpaceConfig{}.place_radius_m;
+  /// ... also from the vacated places other keyframes found (selection::shareVacatedPlaces).
+  bool free_space_shared = true;
 };
 
 /// `sessions`: the demo's sessions, already fused by its complete run (their seen() surfaces are

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_set>
+#include <utility>
 
 #include "core/error.h"
 #include "kernels/camera_math.h"
@@ -75,21 +77,82 @@ std::vector<std::uint8_t> samplesBeyond(const SampleRaycast& samples, const Rgbd
 }  // namespace
 
 change::VacatedView vacatedView(const SampleRaycast& samples, const RgbdFrame& frame,
-                                const SupportConfig& config) {
+                                const CameraIntrinsics& intrinsics, const SupportConfig& config,
+                                const change::FreeSpaceConfig& free_space) {
   const SampleGrid& grid = samples.grid;
   const std::vector<std::uint8_t> beyond = samplesBeyond(samples, frame, config);
-  change::VacatedView view;
-  view.T_W_C = frame.T_W_C.cast<float>();
+  change::VacatedView view{frame.T_W_C.cast<float>(), {}, change::DepthTiles(free_space.cell_px)};
   for (int gy = 0; gy < grid.height; ++gy) {
     for (int gx = 0; gx < grid.width; ++gx) {
       const std::size_t s = static_cast<std::size_t>(gy) * grid.width + gx;
       if (!beyond[s]) continue;
       const int u = grid.pixelU(gx), v = grid.pixelV(gy);
-      view.samples.push_back(
-          {static_cast<float>(u), static_cast<float>(v), samples.depth_m[s], frame.depth.at(u, v)});
+      view.samples.push_back({u, v, samples.depth_m[s]});
     }
   }
+  change::keepDepthAround(frame.depth, intrinsics, free_space, view);
   return view;
+}
+
+namespace {
+
+/// A sample's place in a view: its cell and 10 cm of depth.
+std::uint64_t placeKey(int u_px, int v_px, float surface_m, int stride_px) {
+  const auto cell_u = static_cast<std::uint64_t>(u_px / stride_px) & 0xFFFFu;
+  const auto cell_v = static_cast<std::uint64_t>(v_px / stride_px) & 0xFFFFu;
+  const auto depth_bin = static_cast<std::uint64_t>(std::max(0.0f, surface_m) * 10.0f) & 0xFFFFu;
+  return cell_u | cell_v << 16 | depth_bin << 32;
+}
+
+}  // namespace
+
+std::size_t shareVacatedPlaces(std::vector<change::VacatedView>& views,
+                               const std::vector<RgbdFrame>& frames,
+                               const std::vector<std::uint8_t>& targets,
+                               const CameraIntrinsics& intrinsics, const SupportConfig& config,
+                               const change::FreeSpaceConfig& free_space) {
+  config.validate();
+  if (views.size() != frames.size() || targets.size() != frames.size()) {
+    throw InputError("shareVacatedPlaces: " + std::to_string(views.size()) + " views, " +
+                     std::to_string(frames.size()) + " frames and " +
+                     std::to_string(targets.size()) + " targets: one each per keyframe");
+  }
+  free_space.validate();
+  const int stride_px = free_space.cell_px;
+  const Eigen::Vector4f K(intrinsics.fx_px, intrinsics.fy_px, intrinsics.cx_px, intrinsics.cy_px);
+  // Every view's samples as world points on the map's surface, with the view they came from.
+  std::vector<std::pair<Eigen::Vector3f, std::size_t>> points_W;
+  for (std::size_t j = 0; j < views.size(); ++j) {
+    for (const change::VacatedSample& s : views[j].samples) {
+      const Eigen::Vector3f ray_C =
+          pixelRay(static_cast<float>(s.u_px), static_cast<float>(s.v_px), K);
+      points_W.emplace_back(views[j].T_W_C * Eigen::Vector3f(ray_C * s.surface_m), j);
+    }
+  }
+  std::size_t added = 0;
+  for (std::size_t k = 0; k < views.size(); ++k) {
+    if (!targets[k]) continue;
+    change::VacatedView& view = views[k];
+    std::unordered_set<std::uint64_t> places;
+    for (const change::VacatedSample& s : view.samples) {
+      places.insert(placeKey(s.u_px, s.v_px, s.surface_m, stride_px));
+    }
+    const Eigen::Isometry3f T_C_W = frames[k].T_W_C.inverse().cast<float>();
+    for (const auto& [point_W, source] : points_W) {
+      if (source == k || !passes(frames[k], T_C_W, intrinsics, point_W, config)) continue;
+      const Eigen::Vector3f p_C = T_C_W * point_W;
+      const int u = static_cast<int>(std::lround(K[0] * p_C.x() / p_C.z() + K[2]));
+      const int v = static_cast<int>(std::lround(K[1] * p_C.y() / p_C.z() + K[3]));
+      // The centre of its cell (as a grid sample with offset stride / 2 would lie).
+      const int cell_u = (u / stride_px) * stride_px + stride_px / 2;
+      const int cell_v = (v / stride_px) * stride_px + stride_px / 2;
+      if (!places.insert(placeKey(cell_u, cell_v, p_C.z(), stride_px)).second) continue;
+      view.samples.push_back({cell_u, cell_v, p_C.z()});
+      ++added;
+    }
+    change::keepDepthAround(frames[k].depth, intrinsics, free_space, view);
+  }
+  return added;
 }
 
 std::vector<Eigen::Vector3f> vacatedPoints(const SampleRaycast& samples, const RgbdFrame& frame,

@@ -44,6 +44,12 @@ LoopConfig demoLoopConfig(bool incremental) {
   return c;
 }
 
+change::FreeSpaceConfig freeSpace(const LoopConfig& config) {
+  change::FreeSpaceConfig c = config.free_space;
+  c.cell_px = config.scorer.sample_stride_px;
+  return c;
+}
+
 std::size_t SessionRun::fusedCount() const {
   return static_cast<std::size_t>(std::count(fused.begin(), fused.end(), 1));
 }
@@ -101,7 +107,8 @@ std::vector<std::vector<Eigen::Vector3f>> SelectionLoop::scoreSession(
       vacated_W.push_back(vacatedPoints(samples, frames[i], session.intrinsics(), config_.support));
     }
     if (collect_points && config_.keep_vacated_views) {
-      run.vacated_views.push_back(vacatedView(samples, frames[i], config_.support));
+      run.vacated_views.push_back(vacatedView(samples, frames[i], session.intrinsics(),
+                                              config_.support, freeSpace(config_)));
     }
     if (collect_points && config_.confirm.enabled) {
       const auto confirmed =
@@ -164,6 +171,13 @@ const SessionRun& SelectionLoop::addSession(const sim::SimSessionDataset& sessio
   }
   // Only the skipped keyframes' vacated samples are wanted: a fused keyframe gives its own.
   if (!run.vacated_views.empty()) {
+    if (config_.share_vacated_places) {
+      std::vector<std::uint8_t> skipped_flags(n);
+      for (std::size_t i = 0; i < n; ++i) skipped_flags[i] = run.fused[i] ? 0 : 1;
+      run.shared_vacated_samples =
+          shareVacatedPlaces(run.vacated_views, frames, skipped_flags, session.intrinsics(),
+                             config_.support, freeSpace(config_));
+    }
     std::vector<change::VacatedView> skipped;
     for (std::size_t i = 0; i < n; ++i) {
       if (!run.fused[i]) skipped.push_back(std::move(run.vacated_views[i]));

@@ -45,7 +45,16 @@ struct LoopConfig {
   /// Incremental, sessions >= 1: keep the skipped keyframes' samples that look beyond the map
   /// (SessionRun::vacated_views; off by default, on in demoLoopConfig).
   bool keep_vacated_views = false;
+  /// ... with the keyframe's depth where the place around each can project (its cell_px is
+  /// taken from scorer.sample_stride_px: freeSpace()).
+  change::FreeSpaceConfig free_space;
+  /// ... and each skipped keyframe also takes the other keyframes' vacated samples it looks
+  /// through (shareVacatedPlaces).
+  bool share_vacated_places = true;
 };
+
+/// config.free_space with the sample grid's cells.
+change::FreeSpaceConfig freeSpace(const LoopConfig& config);
 
 struct SessionRun {
   int session = 0;
@@ -68,7 +77,8 @@ struct SessionRun {
   /// Incremental with keep_vacated_views, sessions >= 1, one per skipped keyframe, in order: its
   /// samples that look beyond the map (change/carry_free.h integrates them as free space).
   std::vector<change::VacatedView> vacated_views;
-  double score_device_ms = 0.0;  // raycast device time, summed
+  std::size_t shared_vacated_samples = 0;  // of them, taken from other keyframes
+  double score_device_ms = 0.0;            // raycast device time, summed
   std::size_t fusedCount() const;
 };
 
