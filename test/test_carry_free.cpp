@@ -156,7 +156,7 @@ TEST(FreeSpace, AgreesWithFusingTheKeyframeWhereItUpdates) {
   integrateFrameReference(fused, frame, k, 1);
   const float truncation_m = fusionConfig().truncationDistance();
   const Eigen::Isometry3f T_C_W = T_W_C.inverse();
-  int before_the_board = 0;
+  int before_the_board = 0, surface = 0;
   for (const GlobalVoxelIndex& v : updated) {
     const TsdfVoxel* f = free.findVoxel(v);
     const TsdfVoxel* g = fused.findVoxel(v);
@@ -164,14 +164,23 @@ TEST(FreeSpace, AgreesWithFusingTheKeyframeWhereItUpdates) {
     ASSERT_NE(g, nullptr) << "fusing the keyframe touches every voxel the view updates";
     EXPECT_FLOAT_EQ(f->tsdf_m, g->tsdf_m);
     EXPECT_FLOAT_EQ(f->weight, g->weight);
-    // Ground truth: the box's place, now free, in front of what was measured.
+    // Ground truth: the box's place; free where the wall or the board lies beyond it, the
+    // board's distance (along the ray) just in front of and behind the board.
     const Eigen::Vector3f centre_W = voxelCenter(v, kVoxel);
     EXPECT_LT(test::boxSdf(centre_W.cast<double>(), box), truncation_m);
     const Projected p = project(T_C_W, centre_W);
-    EXPECT_GE(depth.at(p.u_px, p.v_px) - p.z_m, truncation_m);
-    if (p.u_px >= 33) ++before_the_board;
+    const float measured_m = depth.at(p.u_px, p.v_px);
+    if (measured_m - p.z_m >= truncation_m) {
+      EXPECT_FLOAT_EQ(f->tsdf_m, truncation_m);
+      if (p.u_px >= 33) ++before_the_board;
+    } else {
+      EXPECT_FLOAT_EQ(measured_m, 1.62f) << "only the board is measured near the box";
+      EXPECT_GT(measured_m - p.z_m, -truncation_m);
+      ++surface;
+    }
   }
   EXPECT_GT(before_the_board, 50) << "the board leaves the box's front free";
+  EXPECT_GT(surface, 50) << "the box's voxels at the board take the board's distance";
   // Everything of the box's surface band within the place whose pixel shows the wall is updated.
   int missed = 0;
   for (const auto& [b, block] : place.blocks()) {
@@ -200,7 +209,8 @@ TEST(FreeSpace, AgreesWithFusingTheKeyframeWhereItUpdates) {
 TEST(FreeSpace, CountsOneObservationPerViewAndStopsShortOfTheMeasuredSurface) {
   const CameraIntrinsics k = smallCamera();
   // Something was last observed 0.9 to 1.2 m in front of the camera; the wall now measured lies
-  // at 1.15 m: only what lies truncation (8 cm) before it is free.
+  // at 1.15 m: what lies truncation (8 cm) before it is free, what lies within truncation of it
+  // takes its distance, what lies further behind takes nothing.
   TsdfMap place(fusionConfig());
   for (int z = 45; z < 60; ++z) {
     for (int y = -5; y <= 5; ++y) {
@@ -224,10 +234,21 @@ TEST(FreeSpace, CountsOneObservationPerViewAndStopsShortOfTheMeasuredSurface) {
   EXPECT_NEAR(voxel->tsdf_m, (-0.02f + 2 * 0.08f) / 3.0f, 1e-6f);
   EXPECT_EQ(voxel->color_rgba, 9u) << "free space carries no colour";
   EXPECT_FALSE(updated.empty());
+  int free = 0;
   for (const GlobalVoxelIndex& v : updated) {
-    EXPECT_LE((v.z() + 0.5f) * kVoxel, 1.15f - 0.08f + 1e-5f);
+    const float z_m = (v.z() + 0.5f) * kVoxel;
+    EXPECT_LT(z_m, 1.15f + 0.08f);
+    const TsdfVoxel* after = map.findVoxel(v);
+    if (v == centre) continue;
+    if (z_m <= 1.15f - 0.08f + 1e-5f) {
+      EXPECT_FLOAT_EQ(after->tsdf_m, 0.08f) << z_m;
+      ++free;
+    } else {
+      EXPECT_LT(after->tsdf_m, 0.08f) << z_m;
+    }
     EXPECT_NE(place.findVoxel(v), nullptr) << "only what was last observed";
   }
+  EXPECT_GT(free, 0);
 }
 
 TEST(FreeSpace, BadInputIsSkippedOrNamed) {
@@ -333,11 +354,14 @@ TEST(FreeSpace, ThreeUnfusedViewsOfAVacatedPlaceLetTheDetectorFindTheEarlierInst
     return kBoxA.exteriorDistance(p) > 0.3;
   };
   const auto floor_map = [](bool with_box, const test::PointTest& observed) {
-    return test::makeSdfMap(
+    const TsdfMap sdf = test::makeSdfMap(
         [&](const Eigen::Vector3d& p) {
           return with_box ? std::min(p.z(), test::boxSdf(p, kBoxA)) : p.z();
         },
         {0, 0, -0.1}, {2, 2, 1.1}, kVoxel, observed);
+    TsdfMap constant(fusionConfig());  // the demo's change layers: one weight per frame
+    for (const auto& [b, block] : sdf.blocks()) constant.allocateBlock(b) = block;
+    return constant;
   };
   const CameraIntrinsics k = smallCamera();
   const std::vector<VacatedView> views{boxVacatedView({0.7f, 0.65f, 1.6f}, k),

@@ -6,6 +6,8 @@
 
 #include "core/error.h"
 #include "kernels/camera_math.h"
+#include "kernels/normal_estimation.h"
+#include "kernels/tsdf_integration.h"
 
 namespace strata::change {
 
@@ -59,6 +61,23 @@ float DepthTiles::at(int u, int v) const {
   const auto it = tiles_.find(key(u / tile_px_, v / tile_px_));
   if (it == tiles_.end()) return NAN;
   return it->second[static_cast<std::size_t>(v % tile_px_) * tile_px_ + u % tile_px_];
+}
+
+DepthImage DepthTiles::image(int width_px, int height_px) const {
+  DepthImage out(width_px, height_px, NAN);
+  for (const auto& [key, tile] : tiles_) {
+    const int tx = static_cast<int>(static_cast<std::uint32_t>(key & 0xFFFFFFFFu));
+    const int ty = static_cast<int>(static_cast<std::uint32_t>(key >> 32));
+    for (int y = 0; y < tile_px_; ++y) {
+      const int v = ty * tile_px_ + y;
+      if (v < 0 || v >= height_px) continue;
+      for (int x = 0; x < tile_px_; ++x) {
+        const int u = tx * tile_px_ + x;
+        if (u >= 0 && u < width_px) out.at(u, v) = tile[static_cast<std::size_t>(y) * tile_px_ + x];
+      }
+    }
+  }
+  return out;
 }
 
 namespace {
@@ -124,7 +143,7 @@ FreeSpaceStats integrateFreeSpace(const std::vector<VacatedView>& views, const C
                      " m)");
   }
   const float voxel_m = map.voxel_size_m;
-  const float truncation_m = map.truncationDistance();
+  const float truncation_m = map.truncationDistance();  // place voxels: below it
   const float radius2 = config.place_radius_m * config.place_radius_m;
   FreeSpaceStats stats;
   stats.views = views.size();
@@ -134,7 +153,9 @@ FreeSpaceStats integrateFreeSpace(const std::vector<VacatedView>& views, const C
     }
     stats.samples += view.samples.size();
     stats.depth_pixels += view.depth.pixelCount();
-    const Eigen::Isometry3f T_C_W = view.T_W_C.inverse();
+    const DepthImage depth = view.depth.image(k.width_px, k.height_px);
+    const FrameCamera camera = FrameCamera::from(k, view.T_W_C.cast<double>());
+    const std::vector<Eigen::Vector4f> normals_C = estimateNormalsReference(depth, camera, map);
     // Each block once per view, so each voxel too: one observation per voxel and view, as fusing
     // the keyframe would give.
     for (const auto& [b, points_W] :
@@ -151,17 +172,12 @@ FreeSpaceStats integrateFreeSpace(const std::vector<VacatedView>& views, const C
           return (p - centre_W).squaredNorm() <= radius2;
         });
         if (!in_place) continue;
-        const Eigen::Vector3f centre_C = T_C_W * centre_W;
-        if (!(centre_C.z() > 0.0f)) continue;
-        const float u = std::floor(k.fx_px * centre_C.x() / centre_C.z() + k.cx_px + 0.5f);
-        const float pv = std::floor(k.fy_px * centre_C.y() / centre_C.z() + k.cy_px + 0.5f);
-        if (!(u >= 0.0f && pv >= 0.0f && u < k.width_px && pv < k.height_px)) continue;
-        const float measured_m = view.depth.at(static_cast<int>(u), static_cast<int>(pv));
-        if (!depthValid(measured_m, map.min_depth_m, map.max_depth_m)) continue;  // NaN: not kept
-        if (!(measured_m - centre_C.z() >= truncation_m)) continue;
-        TsdfVoxel& voxel = session.allocateVoxel(v);
-        voxel.tsdf_m = (voxel.tsdf_m * voxel.weight + truncation_m) / (voxel.weight + 1.0f);
-        voxel.weight = std::min(voxel.weight + 1.0f, map.max_weight);
+        const TsdfVoxel* existing = session.findVoxel(v);
+        TsdfVoxel voxel = existing != nullptr ? *existing : TsdfVoxel{};
+        const TsdfVoxel before = voxel;
+        integrateVoxelReference(voxel, centre_W, depth, &normals_C, nullptr, camera, map);
+        if (voxel.weight == before.weight && voxel.tsdf_m == before.tsdf_m) continue;
+        session.allocateVoxel(v) = voxel;
         ++stats.voxels;
         if (updated != nullptr) updated->insert(v);
       }
