@@ -80,7 +80,10 @@ TEST(ChangeSupport, AVacatedViewKeepsTheSampleAndTheDepthAroundIt) {
     change::FreeSpaceConfig free_space;
     free_space.cell_px = 40;
     free_space.place_radius_m = radius_m;
-    const change::VacatedView view = vacatedView(samples, frame, camera(), config, free_space);
+    change::VacatedView view = vacatedView(samples, frame, config);
+    EXPECT_EQ(view.depth.tileCount(), 0u) << "no depth until the loop knows it is skipped";
+    EXPECT_EQ(view.depth.tilePx(), 40) << "tiles of the grid's cells";
+    change::keepDepthAround(frame.depth, camera(), free_space, view);
     const bool small = radius_m < 0.1f;
     ASSERT_EQ(view.samples.size(), 1u);
     EXPECT_EQ(view.samples[0].u_px, 60);
@@ -116,7 +119,7 @@ TEST(ChangeSupport, SkippedKeyframesTakeTheVacatedPlacesTheyLookThrough) {
   views[0].samples = {{60, 60, 1.5f}, {60, 60, 1.5f}};  // the same place twice: shared once
   change::FreeSpaceConfig free_space;
   free_space.place_radius_m = 0.05f;  // 100 * 0.05 / 1.45: 4 px around, inside one cell
-  const std::size_t added = shareVacatedPlaces(views, frames, {1, 1, 1, 1}, k, config, free_space);
+  const std::size_t added = shareVacatedPlaces(views, frames, {1, 1, 1, 1}, k, config, 10);
   EXPECT_EQ(added, 1u);
   ASSERT_EQ(views[1].samples.size(), 1u);
   EXPECT_TRUE(views[2].samples.empty()) << "measured in front of the place: not looked through";
@@ -126,17 +129,18 @@ TEST(ChangeSupport, SkippedKeyframesTakeTheVacatedPlacesTheyLookThrough) {
   EXPECT_EQ(views[1].samples[0].u_px, 45);
   EXPECT_EQ(views[1].samples[0].v_px, 65);
   EXPECT_NEAR(views[1].samples[0].surface_m, 1.5f, 1e-5f);
+  EXPECT_EQ(views[1].depth.tileCount(), 0u) << "sharing keeps no depth itself";
+  change::keepDepthAround(frames[1].depth, k, free_space, views[1]);
   EXPECT_EQ(views[1].depth.tileCount(), 1u) << "the depth of its cell is kept";
   EXPECT_FLOAT_EQ(views[1].depth.at(45, 65), 2.0f);
   EXPECT_EQ(views[0].samples.size(), 2u) << "a view does not take its own samples again";
   // Views that are not targets take nothing; mismatched lists are named.
   std::vector<change::VacatedView> again = views;
   again[1].samples.clear();
-  EXPECT_EQ(shareVacatedPlaces(again, frames, {0, 0, 0, 0}, k, config, free_space), 0u);
+  EXPECT_EQ(shareVacatedPlaces(again, frames, {0, 0, 0, 0}, k, config, 10), 0u);
   EXPECT_TRUE(again[1].samples.empty());
-  EXPECT_THROW(shareVacatedPlaces(again, frames, {1, 1}, k, config, free_space), InputError);
-  free_space.cell_px = 0;
-  EXPECT_THROW(shareVacatedPlaces(again, frames, {1, 1, 1, 1}, k, config, free_space), InputError);
+  EXPECT_THROW(shareVacatedPlaces(again, frames, {1, 1}, k, config, 10), InputError);
+  EXPECT_THROW(shareVacatedPlaces(again, frames, {1, 1, 1, 1}, k, config, 0), InputError);
 }
 
 TEST(ChangeSupport, MinNeighboursKeepsAreasAndDropsLoneSamples) {

@@ -80,9 +80,6 @@ DepthImage DepthTiles::image(int width_px, int height_px) const {
   return out;
 }
 
-namespace {
-
-/// The view's vacated samples as world points on the map's surface (non-finite ones left out).
 std::vector<Eigen::Vector3f> samplePoints(const VacatedView& view, const CameraIntrinsics& k) {
   const Eigen::Vector4f K(k.fx_px, k.fy_px, k.cx_px, k.cy_px);
   std::vector<Eigen::Vector3f> points_W;
@@ -94,6 +91,8 @@ std::vector<Eigen::Vector3f> samplePoints(const VacatedView& view, const CameraI
   }
   return points_W;
 }
+
+namespace {
 
 /// For each block of `place` that holds a voxel within radius_m of a point: those points.
 std::unordered_map<BlockIndex, std::vector<Eigen::Vector3f>, BlockIndexHash> blocksNear(

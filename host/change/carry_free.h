@@ -84,8 +84,9 @@ struct FreeSpaceConfig {
   /// Side of a sample's cell (the sample grid's stride) and of the kept depth's tiles.
   int cell_px = 10;
   /// Radius of the place around each vacated sample: about an office chair's half size. Office,
-  /// 60 keyframes per session: 0.3 m finds 20 of 25 instances reading 17 % of the skipped
-  /// keyframes' depth pixels; 0.5 m the same 20 with 31 %.
+  /// 60 keyframes per session (free observations only, carry-forward radius 0.75 spacings):
+  /// 0.3 m finds 20 of 25 instances reading 17 % of the skipped keyframes' depth pixels; 0.5 m
+  /// the same 20 with 31 %.
   float place_radius_m = 0.3f;
 
   void validate() const;  // InputError naming the field
@@ -97,9 +98,13 @@ using VoxelSet = std::unordered_set<GlobalVoxelIndex, BlockIndexHash>;
 struct FreeSpaceStats {
   std::size_t views = 0;         // views given
   std::size_t samples = 0;       // their vacated samples
-  std::size_t voxels = 0;        // voxel observations added (a voxel counts once per view)
+  std::size_t voxels = 0;        // voxel observations added, free or surface (once per view)
   std::size_t depth_pixels = 0;  // pixels of depth kept with the views
 };
+
+/// The view's vacated samples as world points on the map's surface (those with a non-finite or
+/// non-positive surface depth left out).
+std::vector<Eigen::Vector3f> samplePoints(const VacatedView& view, const CameraIntrinsics& k);
 
 /// Keeps in view.depth (tiles of config.cell_px) the depth of `depth` where the place around
 /// each of view.samples can project: the square around its pixel of half side

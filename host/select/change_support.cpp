@@ -77,11 +77,10 @@ std::vector<std::uint8_t> samplesBeyond(const SampleRaycast& samples, const Rgbd
 }  // namespace
 
 change::VacatedView vacatedView(const SampleRaycast& samples, const RgbdFrame& frame,
-                                const CameraIntrinsics& intrinsics, const SupportConfig& config,
-                                const change::FreeSpaceConfig& free_space) {
+                                const SupportConfig& config) {
   const SampleGrid& grid = samples.grid;
   const std::vector<std::uint8_t> beyond = samplesBeyond(samples, frame, config);
-  change::VacatedView view{frame.T_W_C.cast<float>(), {}, change::DepthTiles(free_space.cell_px)};
+  change::VacatedView view{frame.T_W_C.cast<float>(), {}, change::DepthTiles(grid.stride_px)};
   for (int gy = 0; gy < grid.height; ++gy) {
     for (int gx = 0; gx < grid.width; ++gx) {
       const std::size_t s = static_cast<std::size_t>(gy) * grid.width + gx;
@@ -90,7 +89,6 @@ change::VacatedView vacatedView(const SampleRaycast& samples, const RgbdFrame& f
       view.samples.push_back({u, v, samples.depth_m[s]});
     }
   }
-  change::keepDepthAround(frame.depth, intrinsics, free_space, view);
   return view;
 }
 
@@ -110,23 +108,20 @@ std::size_t shareVacatedPlaces(std::vector<change::VacatedView>& views,
                                const std::vector<RgbdFrame>& frames,
                                const std::vector<std::uint8_t>& targets,
                                const CameraIntrinsics& intrinsics, const SupportConfig& config,
-                               const change::FreeSpaceConfig& free_space) {
+                               int stride_px) {
   config.validate();
   if (views.size() != frames.size() || targets.size() != frames.size()) {
     throw InputError("shareVacatedPlaces: " + std::to_string(views.size()) + " views, " +
                      std::to_string(frames.size()) + " frames and " +
                      std::to_string(targets.size()) + " targets: one each per keyframe");
   }
-  free_space.validate();
-  const int stride_px = free_space.cell_px;
+  if (stride_px < 1) throw InputError("shareVacatedPlaces: stride_px must be >= 1");
   const Eigen::Vector4f K(intrinsics.fx_px, intrinsics.fy_px, intrinsics.cx_px, intrinsics.cy_px);
   // Every view's samples as world points on the map's surface, with the view they came from.
   std::vector<std::pair<Eigen::Vector3f, std::size_t>> points_W;
   for (std::size_t j = 0; j < views.size(); ++j) {
-    for (const change::VacatedSample& s : views[j].samples) {
-      const Eigen::Vector3f ray_C =
-          pixelRay(static_cast<float>(s.u_px), static_cast<float>(s.v_px), K);
-      points_W.emplace_back(views[j].T_W_C * Eigen::Vector3f(ray_C * s.surface_m), j);
+    for (const Eigen::Vector3f& p : change::samplePoints(views[j], intrinsics)) {
+      points_W.emplace_back(p, j);
     }
   }
   std::size_t added = 0;
@@ -150,7 +145,6 @@ std::size_t shareVacatedPlaces(std::vector<change::VacatedView>& views,
       view.samples.push_back({cell_u, cell_v, p_C.z()});
       ++added;
     }
-    change::keepDepthAround(frames[k].depth, intrinsics, free_space, view);
   }
   return added;
 }

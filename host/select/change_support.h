@@ -66,26 +66,26 @@ std::vector<Eigen::Vector3f> vacatedPoints(const SampleRaycast& samples, const R
                                            const SupportConfig& config);
 
 /// The samples of one scored keyframe that look beyond the map's surface (the vacated points'
-/// samples before any min_neighbours filter), with its pose and its depth where the place around
-/// each can project (change::keepDepthAround): free space change detection can integrate without
-/// fusing the keyframe (change/carry_free.h).
+/// samples before any min_neighbours filter), with its pose and no depth yet (tiles of the grid's
+/// stride): free space change detection can integrate them without fusing the keyframe
+/// (change/carry_free.h) once change::keepDepthAround kept the depth around them; the selection
+/// loop does that only for the keyframes it skips.
 change::VacatedView vacatedView(const SampleRaycast& samples, const RgbdFrame& frame,
-                                const CameraIntrinsics& intrinsics, const SupportConfig& config,
-                                const change::FreeSpaceConfig& free_space);
+                                const SupportConfig& config);
 
 /// Shares the vacated places among the keyframes of a session: a removed thin object leaves
 /// vacated samples on few keyframes, and few of them where another keyframe looks through the same
 /// place. For each keyframe k with targets[k], every vacated sample of every other view, as a
 /// world point on the map's surface, that k passes (passesPoint) becomes a sample of views[k] too:
-/// at the centre of the cell of free_space.cell_px it projects into, with its camera z as the
-/// surface depth, once per cell and 10 cm of depth. views[k] then keeps frames[k]'s depth around
-/// its new samples (change::keepDepthAround). `views` and `frames`: one per keyframe, in order.
-/// Returns the samples added.
+/// at the centre of the cell of stride_px it projects into, with its camera z as the surface
+/// depth, once per cell and 10 cm of depth. No depth is kept here (change::keepDepthAround does,
+/// once all samples are known). `views` and `frames`: one per keyframe, in order. Returns the
+/// samples added.
 std::size_t shareVacatedPlaces(std::vector<change::VacatedView>& views,
                                const std::vector<RgbdFrame>& frames,
                                const std::vector<std::uint8_t>& targets,
                                const CameraIntrinsics& intrinsics, const SupportConfig& config,
-                               const change::FreeSpaceConfig& free_space);
+                               int stride_px);
 
 /// Whether a ray of `frame` passes `point_W` (see above).
 bool passesPoint(const RgbdFrame& frame, const CameraIntrinsics& intrinsics,

@@ -112,8 +112,7 @@ std::vector<std::vector<Eigen::Vector3f>> SelectionLoop::scoreSession(
       vacated_W.push_back(vacatedPoints(samples, frames[i], session.intrinsics(), config_.support));
     }
     if (collect_points && config_.keep_vacated_views) {
-      run.vacated_views.push_back(vacatedView(samples, frames[i], session.intrinsics(),
-                                              config_.support, freeSpace(config_)));
+      run.vacated_views.push_back(vacatedView(samples, frames[i], config_.support));
     }
     if (collect_points && config_.confirm.enabled) {
       const auto confirmed =
@@ -174,18 +173,22 @@ const SessionRun& SelectionLoop::addSession(const sim::SimSessionDataset& sessio
       run.fused[i] |= run.selection.support[i];
     }
   }
-  // Only the skipped keyframes' vacated samples are wanted: a fused keyframe gives its own.
+  // Only the skipped keyframes' vacated samples are wanted: a fused keyframe gives its own. Their
+  // depth is kept once, around their own and shared samples.
   if (!run.vacated_views.empty()) {
+    std::vector<std::uint8_t> skipped_flags(n);
+    for (std::size_t i = 0; i < n; ++i) skipped_flags[i] = run.fused[i] ? 0 : 1;
     if (config_.share_vacated_places) {
-      std::vector<std::uint8_t> skipped_flags(n);
-      for (std::size_t i = 0; i < n; ++i) skipped_flags[i] = run.fused[i] ? 0 : 1;
       run.shared_vacated_samples =
           shareVacatedPlaces(run.vacated_views, frames, skipped_flags, session.intrinsics(),
-                             config_.support, freeSpace(config_));
+                             config_.support, config_.scorer.sample_stride_px);
     }
     std::vector<change::VacatedView> skipped;
     for (std::size_t i = 0; i < n; ++i) {
-      if (!run.fused[i]) skipped.push_back(std::move(run.vacated_views[i]));
+      if (!skipped_flags[i]) continue;
+      change::keepDepthAround(frames[i].depth, session.intrinsics(), freeSpace(config_),
+                              run.vacated_views[i]);
+      skipped.push_back(std::move(run.vacated_views[i]));
     }
     run.vacated_views = std::move(skipped);
   }
