@@ -154,7 +154,8 @@ TEST(ChangeDemo, DefaultRoomMeetsTheIssueTargets) {
   for (const char* key : {"\"per_session\": [{\"fused\": ", "\"arrivals_incremental\": {",
                           "\"instances\": [{\"session\": ", "\"carried_forward\": {",
                           "\"free_space\": {\"skipped_keyframes\": ", "\"shared_samples\": ",
-                          "\"depth_pixels_kept\": "}) {
+                          "\"depth_pixels_kept\": ", "\"arrived_samples\": ",
+                          "\"free_voxel_observations\": "}) {
     EXPECT_NE(report.incremental_json.find(key), std::string::npos) << key;
   }
   EXPECT_GE(inc.objects_incremental.found + 1, inc.objects_complete.found);
@@ -179,6 +180,10 @@ TEST(ChangeDemo, DefaultRoomMeetsTheIssueTargets) {
   EXPECT_LE((inc.free_space.samples - inc.free_space_shared_samples) * 100, inc.free_space_pixels);
   EXPECT_GT(inc.free_space.depth_pixels, 0u);
   EXPECT_LT(inc.free_space.depth_pixels, inc.free_space_pixels);
+  // At most one arrived sample per cell of every skipped keyframe; free observations are a part
+  // of all observations.
+  EXPECT_LE(inc.free_space.arrived_samples * 100, inc.free_space_pixels);
+  EXPECT_LE(inc.free_space.free_voxels, inc.free_space.voxels);
   fs::remove_all(options.out_dir);
 }
 

@@ -80,7 +80,7 @@ TEST(ChangeSupport, AVacatedViewKeepsTheSampleAndTheDepthAroundIt) {
     change::FreeSpaceConfig free_space;
     free_space.cell_px = 40;
     free_space.place_radius_m = radius_m;
-    change::VacatedView view = vacatedView(samples, frame, config);
+    change::ChangedView view = changedView(samples, frame, config);
     EXPECT_EQ(view.depth.tileCount(), 0u) << "no depth until the loop knows it is skipped";
     EXPECT_EQ(view.depth.tilePx(), 40) << "tiles of the grid's cells";
     change::keepDepthAround(frame.depth, camera(), free_space, view);
@@ -100,6 +100,53 @@ TEST(ChangeSupport, AVacatedViewKeepsTheSampleAndTheDepthAroundIt) {
   }
 }
 
+TEST(ChangeSupport, AViewKeepsTheSamplesThatMeasureSomethingNewInFrontOfTheMap) {
+  const SupportConfig config;
+  RgbdFrame frame = wallFrame(0.0);  // the wall at 2 m, as the map holds it
+  SampleRaycast samples;
+  samples.grid = SampleGrid::of(camera(), 40);  // 4 x 3 samples, cells of 40 px
+  const SampleGrid& g = samples.grid;
+  const std::size_t n = g.count();
+  samples.hit.assign(n, 1);
+  samples.depth_m.assign(n, 2.0f);
+  const auto measure = [&](std::size_t s, float depth_m) {
+    frame.depth.at(g.pixelU(static_cast<int>(s) % g.width),
+                   g.pixelV(static_cast<int>(s) / g.width)) = depth_m;
+  };
+  measure(5, 1.5f);                               // something arrived in front of the wall
+  measure(6, 1.95f);                              // within the tolerance: noise
+  samples.hit[7] = 0, samples.depth_m[7] = 0.0f;  // the map has nothing on this ray ...
+  measure(7, 3.0f);                               // ... and the keyframe measures something
+  samples.hit[8] = 0, samples.depth_m[8] = 0.0f;
+  measure(8, 9.0f);  // beyond the fusion's range: nothing fusion would use
+  measure(9, 0.0f);  // no depth
+  measure(10, NAN);  // no depth either
+  const change::ChangedView view = changedView(samples, frame, config);
+  EXPECT_TRUE(view.samples.empty()) << "nothing measured beyond the map";
+  ASSERT_EQ(view.arrived.size(), 2u);
+  EXPECT_EQ(view.arrived[0].u_px, 60);
+  EXPECT_EQ(view.arrived[0].v_px, 60);
+  EXPECT_FLOAT_EQ(view.arrived[0].measured_m, 1.5f);
+  EXPECT_EQ(view.arrived[1].u_px, 140);
+  EXPECT_EQ(view.arrived[1].v_px, 60);
+  EXPECT_FLOAT_EQ(view.arrived[1].measured_m, 3.0f);
+  // Its depth is kept on its cell and the ring of cells around it; ring 0 keeps none.
+  for (const int ring : {0, 1}) {
+    change::FreeSpaceConfig free_space;
+    free_space.cell_px = 40;
+    free_space.arrived_ring_cells = ring;
+    change::ChangedView kept = view;
+    change::keepDepthAround(frame.depth, camera(), free_space, kept);
+    // Samples (1, 1) and (3, 1) of a 4 x 3 grid: 3 x 3 cells and 2 x 3 cells, sharing 1 x 3.
+    EXPECT_EQ(kept.depth.tileCount(), ring == 0 ? 0u : 12u) << ring;
+    if (ring == 1) {
+      EXPECT_FLOAT_EQ(kept.depth.at(0, 0), frame.depth.at(0, 0));
+      EXPECT_FLOAT_EQ(kept.depth.at(60, 60), 1.5f);
+      EXPECT_FLOAT_EQ(kept.depth.at(159, 119), frame.depth.at(159, 119));
+    }
+  }
+}
+
 TEST(ChangeSupport, SkippedKeyframesTakeTheVacatedPlacesTheyLookThrough) {
   const SupportConfig config;
   const CameraIntrinsics k = camera();
@@ -111,7 +158,7 @@ TEST(ChangeSupport, SkippedKeyframesTakeTheVacatedPlacesTheyLookThrough) {
   for (int v = 0; v < k.height_px; ++v) {
     for (int u = 0; u < k.width_px; ++u) frames[2].depth.at(u, v) = 1.45f;
   }
-  std::vector<change::VacatedView> views(frames.size());
+  std::vector<change::ChangedView> views(frames.size());
   for (std::size_t i = 0; i < frames.size(); ++i) {
     views[i].T_W_C = frames[i].T_W_C.cast<float>();
     views[i].depth = change::DepthTiles(10);
@@ -135,7 +182,7 @@ TEST(ChangeSupport, SkippedKeyframesTakeTheVacatedPlacesTheyLookThrough) {
   EXPECT_FLOAT_EQ(views[1].depth.at(45, 65), 2.0f);
   EXPECT_EQ(views[0].samples.size(), 2u) << "a view does not take its own samples again";
   // Views that are not targets take nothing; mismatched lists are named.
-  std::vector<change::VacatedView> again = views;
+  std::vector<change::ChangedView> again = views;
   again[1].samples.clear();
   EXPECT_EQ(shareVacatedPlaces(again, frames, {0, 0, 0, 0}, k, config, 10), 0u);
   EXPECT_TRUE(again[1].samples.empty());

@@ -189,8 +189,8 @@ CLI::App* addDemoCommand(CLI::App& app, DemoOptions& o) {
       "where keyframes confirmed the map");
   demo->add_flag(
       "--no-free-space", [&o](std::int64_t) { o.select.free_space = false; },
-      "With --incremental: change detection takes no free space from the vacated samples of "
-      "skipped keyframes");
+      "With --incremental: change detection takes nothing from skipped keyframes (neither free "
+      "space through vacated places nor arrived surfaces)");
   demo->add_flag(
       "--no-shared-vacated", [&o](std::int64_t) { o.select.free_space_shared = false; },
       "With --incremental: a skipped keyframe's free space comes from its own vacated samples "
@@ -199,6 +199,12 @@ CLI::App* addDemoCommand(CLI::App& app, DemoOptions& o) {
                    "With --incremental: metres around each vacated sample in which the last "
                    "observations are tested against skipped keyframes' depth for free space")
       ->check(CLI::Range(0.01, 2.0))
+      ->capture_default_str();
+  demo->add_option("--arrived-ring", o.select.arrived_ring_cells,
+                   "With --incremental: sample cells of skipped keyframes' depth kept on each side "
+                   "of a sample that measures something in front of the map, whose surface change "
+                   "detection then takes (0: none)")
+      ->check(CLI::Range(0, 8))
       ->capture_default_str();
   demo->add_option("--select-dilation", o.select.dilation,
                    "With --incremental: keyframes added on each side of a selected one")

@@ -69,13 +69,15 @@ change::WorldEvaluation detectOnSelected(vk::Context& context, const sim::World&
       change::VoxelSet own;
       if (options.free_space) {
         const CameraIntrinsics& camera = sessions[session]->session().intrinsics();
-        const change::FreeSpaceStats stats =
-            change::integrateFreeSpace(run.vacated_views, camera, free_config, latest, layer, &own);
+        const change::FreeSpaceStats stats = change::integrateChangedPlaces(
+            run.changed_views, camera, free_config, latest, layer, nullptr, &own);
         r.free_space_pixels +=
             stats.views * static_cast<std::size_t>(camera.width_px) * camera.height_px;
         r.free_space.views += stats.views;
         r.free_space.samples += stats.samples;
         r.free_space.voxels += stats.voxels;
+        r.free_space.free_voxels += stats.free_voxels;
+        r.free_space.arrived_samples += stats.arrived_samples;
         r.free_space.depth_pixels += stats.depth_pixels;
         r.free_space_shared_samples += run.shared_vacated_samples;
       }
@@ -173,9 +175,10 @@ IncrementalResult runIncremental(vk::Context& context, const sim::World& world,
     c.support.views = options.change_views ? info.change.minFrames() : 0;
     c.support.min_points = options.change_view_min_points;
     c.confirm.enabled = incremental && options.carry_forward;
-    c.keep_vacated_views = incremental && options.free_space;
+    c.keep_changed_views = incremental && options.free_space;
     c.free_space.place_radius_m = options.free_space_radius_m;
     c.share_vacated_places = options.free_space_shared;
+    c.free_space.arrived_ring_cells = options.arrived_ring_cells;
     return c;
   };
   selection::SelectionLoop full(context, configured(false));
@@ -240,8 +243,8 @@ std::string summarizeIncremental(const IncrementalResult& r) {
       "truth: %s), surface coverage %.2f %% vs "
       "%.2f %% fusing all; change detection on the fused keyframes (%zu voxels carried forward "
       "around %zu points the keyframes confirmed; free space from %zu vacated samples of %zu "
-      "skipped keyframes, %zu of those samples shared among keyframes, with %.3g %% of their depth "
-      "pixels) found %zu of %zu moved "
+      "skipped keyframes, %zu of those samples shared among keyframes, and surfaces from %zu "
+      "arrived samples, with %.3g %% of their depth pixels) found %zu of %zu moved "
       "objects (all keyframes: %zu of %zu); counting each moved object only in the sessions in "
       "which it changed, %zu of %zu (all keyframes: %zu of %zu). %.1f s.",
       100 * ours.recall(), 100 * ours.precision(), 100 * ours.accuracy(), 100 * ncc.recall(),
@@ -251,6 +254,7 @@ std::string summarizeIncremental(const IncrementalResult& r) {
       per_session.c_str(), r.change_views_added, r.fused_confusion.describe().c_str(),
       100 * r.coverage_incremental, 100 * r.coverage_complete, r.carried.voxels, r.carried.points,
       r.free_space.samples, r.free_space.views, r.free_space_shared_samples,
+      r.free_space.arrived_samples,
       r.free_space_pixels > 0 ? 100.0 * r.free_space.depth_pixels / r.free_space_pixels : 0.0,
       r.objects_incremental.found, r.objects_incremental.moved, r.objects_complete.found,
       r.objects_complete.moved, r.arrivals_incremental.found, r.arrivals_incremental.arrivals,

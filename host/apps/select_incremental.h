@@ -80,13 +80,16 @@ struct IncrementalOptions {
   /// Carry the latest observations forward where keyframes confirmed the map, so change
   /// detection sees objects standing as before (change/carry_forward.h).
   bool carry_forward = true;
-  /// Integrate the free space that skipped keyframes saw through vacated places into change
-  /// detection, from their vacated samples (change/carry_free.h).
+  /// Integrate what skipped keyframes saw change into change detection: the free space through
+  /// vacated places, from their vacated samples, and arrived surfaces (change/carry_free.h).
   bool free_space = true;
   /// ... in the place within this radius of each vacated sample (metres).
   float free_space_radius_m = change::FreeSpaceConfig{}.place_radius_m;
   /// ... also from the vacated places other keyframes found (selection::shareVacatedPlaces).
   bool free_space_shared = true;
+  /// ... arrived surfaces: cells of depth kept around each arrived sample's, on each side (0: no
+  /// arrivals, free space only).
+  int arrived_ring_cells = change::FreeSpaceConfig{}.arrived_ring_cells;
 };
 
 /// `sessions`: the demo's sessions, already fused by its complete run (their seen() surfaces are

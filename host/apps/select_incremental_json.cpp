@@ -85,7 +85,9 @@ std::string incrementalJson(const IncrementalResult& r) {
       << ", \"shared_samples\": " << r.free_space_shared_samples
       << ", \"pixels_of_skipped_keyframes\": " << r.free_space_pixels
       << ", \"depth_pixels_kept\": " << r.free_space.depth_pixels
-      << ", \"voxel_observations\": " << r.free_space.voxels << "}, \"fused_vs_truth\": ";
+      << ", \"arrived_samples\": " << r.free_space.arrived_samples
+      << ", \"voxel_observations\": " << r.free_space.voxels
+      << ", \"free_voxel_observations\": " << r.free_space.free_voxels << "}, \"fused_vs_truth\": ";
   const selection::Confusion& f = r.fused_confusion;
   out << "{\"recall\": " << f.recall() << ", \"precision\": " << f.precision()
       << ", \"accuracy\": " << f.accuracy()

@@ -20,6 +20,10 @@ void FreeSpaceConfig::validate() const {
     throw InputError("free space place_radius_m must be in (0, 2] m, got " +
                      std::to_string(place_radius_m));
   }
+  if (arrived_ring_cells < 0 || arrived_ring_cells > 8) {
+    throw InputError("free space arrived_ring_cells must be in [0, 8], got " +
+                     std::to_string(arrived_ring_cells));
+  }
 }
 
 DepthTiles::DepthTiles(int tile_px) : tile_px_(tile_px) {
@@ -80,7 +84,7 @@ DepthImage DepthTiles::image(int width_px, int height_px) const {
   return out;
 }
 
-std::vector<Eigen::Vector3f> samplePoints(const VacatedView& view, const CameraIntrinsics& k) {
+std::vector<Eigen::Vector3f> samplePoints(const ChangedView& view, const CameraIntrinsics& k) {
   const Eigen::Vector4f K(k.fx_px, k.fy_px, k.cx_px, k.cy_px);
   std::vector<Eigen::Vector3f> points_W;
   for (const VacatedSample& s : view.samples) {
@@ -114,10 +118,84 @@ std::unordered_map<BlockIndex, std::vector<Eigen::Vector3f>, BlockIndexHash> blo
   return near;
 }
 
+/// Whether the depth measures at least the truncation distance beyond `p_W` along its pixel's ray
+/// (the free observation of integrateVoxelReference, whatever distance it stores).
+bool measuresFreeAt(const Eigen::Vector3f& p_W, const DepthImage& depth, const FrameCamera& camera,
+                    const MapConfig& map) {
+  const Eigen::Vector3f p_C = (camera.T_C_W * p_W.homogeneous()).head<3>();
+  if (!(p_C.z() > 0.0f)) return false;
+  const float u = std::floor(camera.K[0] * p_C.x() / p_C.z() + camera.K[2] + 0.5f);
+  const float v = std::floor(camera.K[1] * p_C.y() / p_C.z() + camera.K[3] + 0.5f);
+  if (u < 0.0f || v < 0.0f || u >= static_cast<float>(depth.width_px) ||
+      v >= static_cast<float>(depth.height_px)) {
+    return false;
+  }
+  const float d = depth.at(static_cast<int>(u), static_cast<int>(v));
+  if (!depthValid(d, map.min_depth_m, map.max_depth_m)) return false;
+  const float ray_scale = Eigen::Vector3f(p_C.x() / p_C.z(), p_C.y() / p_C.z(), 1.0f).norm();
+  return (d - p_C.z()) * ray_scale >= map.truncationDistance();
+}
+
+/// The voxels of `place` that hold something (weight > 0, tsdf below truncation) within radius_m
+/// of a point.
+VoxelSet placeVoxels(const std::vector<Eigen::Vector3f>& points_W, const TsdfMap& place,
+                     float radius_m) {
+  const float voxel_m = place.config().voxel_size_m;
+  const float truncation_m = place.config().truncationDistance();
+  const float radius2 = radius_m * radius_m;
+  VoxelSet out;
+  for (const auto& [b, near_W] : blocksNear(points_W, place, radius_m)) {
+    const TsdfBlock& block = *place.findBlock(b);
+    for (int i = 0; i < kVoxelsPerBlock; ++i) {
+      const TsdfVoxel& last = block[i];
+      if (!(last.weight > 0.0f) || !(last.tsdf_m < truncation_m)) continue;
+      const GlobalVoxelIndex v =
+          b * kBlockEdge + Eigen::Vector3i(i % kBlockEdge, (i / kBlockEdge) % kBlockEdge,
+                                           i / (kBlockEdge * kBlockEdge));
+      const Eigen::Vector3f centre_W = voxelCenter(v, voxel_m);
+      const bool in_place = std::any_of(near_W.begin(), near_W.end(), [&](const auto& p) {
+        return (p - centre_W).squaredNorm() <= radius2;
+      });
+      if (in_place) out.insert(v);
+    }
+  }
+  return out;
+}
+
+/// The voxels within reach of the view's arrived samples' kept cells: a ball around each measured
+/// point as wide as the kept square at its depth (its diagonal) plus the truncation band.
+VoxelSet arrivedVoxels(const ChangedView& view, const CameraIntrinsics& k,
+                       const FreeSpaceConfig& config, const MapConfig& map) {
+  VoxelSet out;
+  if (config.arrived_ring_cells == 0) return out;
+  const Eigen::Vector4f K(k.fx_px, k.fy_px, k.cx_px, k.cy_px);
+  const float voxel_m = map.voxel_size_m;
+  const float half_px = config.cell_px * (config.arrived_ring_cells + 0.5f);
+  for (const ArrivedSample& s : view.arrived) {
+    if (!(s.measured_m > 0.0f) || !std::isfinite(s.measured_m)) continue;
+    const Eigen::Vector3f ray_C =
+        pixelRay(static_cast<float>(s.u_px), static_cast<float>(s.v_px), K);
+    const Eigen::Vector3f p_vox = view.T_W_C * Eigen::Vector3f(ray_C * s.measured_m) / voxel_m;
+    const float radius_vox =
+        (std::sqrt(2.0f) * half_px * s.measured_m / k.fx_px + map.truncationDistance()) / voxel_m;
+    const Eigen::Vector3i lo = (p_vox.array() - radius_vox).floor().cast<int>();
+    const Eigen::Vector3i hi = (p_vox.array() + radius_vox).floor().cast<int>();
+    for (int z = lo.z(); z <= hi.z(); ++z) {
+      for (int y = lo.y(); y <= hi.y(); ++y) {
+        for (int x = lo.x(); x <= hi.x(); ++x) {
+          const Eigen::Vector3f c = Eigen::Vector3f(x, y, z).array() + 0.5f;
+          if ((c - p_vox).squaredNorm() <= radius_vox * radius_vox) out.insert({x, y, z});
+        }
+      }
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 void keepDepthAround(const DepthImage& depth, const CameraIntrinsics& intrinsics,
-                     const FreeSpaceConfig& config, VacatedView& view) {
+                     const FreeSpaceConfig& config, ChangedView& view) {
   config.validate();
   for (const VacatedSample& s : view.samples) {
     if (!std::isfinite(s.surface_m)) continue;
@@ -127,59 +205,72 @@ void keepDepthAround(const DepthImage& depth, const CameraIntrinsics& intrinsics
     view.depth.keep(depth, s.u_px - half_px, s.u_px + half_px + 1, s.v_px - half_px,
                     s.v_px + half_px + 1);
   }
+  if (config.arrived_ring_cells == 0) return;
+  // The sample's cell (the sample at its centre) and the ring around it.
+  const int half_px = config.cell_px / 2 + config.arrived_ring_cells * config.cell_px;
+  for (const ArrivedSample& s : view.arrived) {
+    view.depth.keep(depth, s.u_px - half_px, s.u_px + half_px + 1, s.v_px - half_px,
+                    s.v_px + half_px + 1);
+  }
 }
 
-FreeSpaceStats integrateFreeSpace(const std::vector<VacatedView>& views, const CameraIntrinsics& k,
-                                  const FreeSpaceConfig& config, const TsdfMap& place,
-                                  TsdfMap& session, VoxelSet* updated) {
+FreeSpaceStats integrateChangedPlaces(const std::vector<ChangedView>& views,
+                                      const CameraIntrinsics& k, const FreeSpaceConfig& config,
+                                      const TsdfMap& place, TsdfMap& session, VoxelSet* updated,
+                                      VoxelSet* own) {
   config.validate();
   k.validate();
   const MapConfig& map = session.config();
   if (place.config().voxel_size_m != map.voxel_size_m) {
-    throw InputError("integrateFreeSpace: the place map's voxels (" +
+    throw InputError("integrateChangedPlaces: the place map's voxels (" +
                      std::to_string(place.config().voxel_size_m) +
                      " m) differ from the session layer's (" + std::to_string(map.voxel_size_m) +
                      " m)");
   }
   const float voxel_m = map.voxel_size_m;
   const float truncation_m = map.truncationDistance();  // place voxels: below it
-  const float radius2 = config.place_radius_m * config.place_radius_m;
   FreeSpaceStats stats;
   stats.views = views.size();
-  for (const VacatedView& view : views) {
+  for (const ChangedView& view : views) {
     if (!view.T_W_C.matrix().allFinite()) {
-      throw InputError("integrateFreeSpace: a view's pose is not finite");
+      throw InputError("integrateChangedPlaces: a view's pose is not finite");
     }
     stats.samples += view.samples.size();
     stats.depth_pixels += view.depth.pixelCount();
     const DepthImage depth = view.depth.image(k.width_px, k.height_px);
     const FrameCamera camera = FrameCamera::from(k, view.T_W_C.cast<double>());
     const std::vector<Eigen::Vector4f> normals_C = estimateNormalsReference(depth, camera, map);
-    // Each block once per view, so each voxel too: one observation per voxel and view, as fusing
-    // the keyframe would give.
-    for (const auto& [b, points_W] :
-         blocksNear(samplePoints(view, k), place, config.place_radius_m)) {
-      const TsdfBlock& block = *place.findBlock(b);
-      for (int i = 0; i < kVoxelsPerBlock; ++i) {
-        const TsdfVoxel& last = block[i];
-        if (!(last.weight > 0.0f) || !(last.tsdf_m < truncation_m)) continue;
-        const GlobalVoxelIndex v =
-            b * kBlockEdge + Eigen::Vector3i(i % kBlockEdge, (i / kBlockEdge) % kBlockEdge,
-                                             i / (kBlockEdge * kBlockEdge));
-        const Eigen::Vector3f centre_W = voxelCenter(v, voxel_m);
-        const bool in_place = std::any_of(points_W.begin(), points_W.end(), [&](const auto& p) {
-          return (p - centre_W).squaredNorm() <= radius2;
-        });
-        if (!in_place) continue;
-        const TsdfVoxel* existing = session.findVoxel(v);
-        TsdfVoxel voxel = existing != nullptr ? *existing : TsdfVoxel{};
-        const TsdfVoxel before = voxel;
-        integrateVoxelReference(voxel, centre_W, depth, &normals_C, nullptr, camera, map);
-        if (voxel.weight == before.weight && voxel.tsdf_m == before.tsdf_m) continue;
-        session.allocateVoxel(v) = voxel;
-        ++stats.voxels;
-        if (updated != nullptr) updated->insert(v);
-      }
+    VoxelSet candidates = placeVoxels(samplePoints(view, k), place, config.place_radius_m);
+    const VoxelSet arrived = arrivedVoxels(view, k, config, map);
+    stats.arrived_samples += view.arrived.size();
+    candidates.insert(arrived.begin(), arrived.end());
+    // Each voxel once per view: one observation per voxel and view, as fusing the keyframe would
+    // give.
+    for (const GlobalVoxelIndex& v : candidates) {
+      const Eigen::Vector3f centre_W = voxelCenter(v, voxel_m);
+      const TsdfVoxel* existing = session.findVoxel(v);
+      const bool free = measuresFreeAt(centre_W, depth, camera, map);
+      const TsdfVoxel* last = place.findVoxel(v);
+      const bool last_surface =
+          last != nullptr && last->weight > 0.0f && last->tsdf_m < truncation_m;
+      // Free space where nothing stood and nothing is held yet would only allocate (a voxel of
+      // an allocated block may hold nothing).
+      const bool held = existing != nullptr && existing->weight > 0.0f;
+      if (free && !held && !last_surface) continue;
+      // This view's observation alone, to compare with the last one.
+      TsdfVoxel observation{};
+      integrateVoxelReference(observation, centre_W, depth, &normals_C, nullptr, camera, map);
+      if (!(observation.weight > 0.0f)) continue;
+      TsdfVoxel voxel = existing != nullptr ? *existing : TsdfVoxel{};
+      integrateVoxelReference(voxel, centre_W, depth, &normals_C, nullptr, camera, map);
+      session.allocateVoxel(v) = voxel;
+      ++stats.voxels;
+      stats.free_voxels += free ? 1 : 0;
+      if (updated != nullptr) updated->insert(v);
+      // Own evidence: the observation puts the voxel on the other side of a surface than the last
+      // one did (free where something stood, inside something where nothing stood).
+      const bool inside_last = last != nullptr && last->weight > 0.0f && last->tsdf_m < 0.0f;
+      if (own != nullptr && (observation.tsdf_m < 0.0f) != inside_last) own->insert(v);
     }
   }
   return stats;

@@ -76,17 +76,29 @@ std::vector<std::uint8_t> samplesBeyond(const SampleRaycast& samples, const Rgbd
 
 }  // namespace
 
-change::VacatedView vacatedView(const SampleRaycast& samples, const RgbdFrame& frame,
+change::ChangedView changedView(const SampleRaycast& samples, const RgbdFrame& frame,
                                 const SupportConfig& config) {
   const SampleGrid& grid = samples.grid;
   const std::vector<std::uint8_t> beyond = samplesBeyond(samples, frame, config);
-  change::VacatedView view{frame.T_W_C.cast<float>(), {}, change::DepthTiles(grid.stride_px)};
+  change::ChangedView view{frame.T_W_C.cast<float>(), {}, change::DepthTiles(grid.stride_px), {}};
   for (int gy = 0; gy < grid.height; ++gy) {
     for (int gx = 0; gx < grid.width; ++gx) {
       const std::size_t s = static_cast<std::size_t>(gy) * grid.width + gx;
       if (!beyond[s]) continue;
       const int u = grid.pixelU(gx), v = grid.pixelV(gy);
       view.samples.push_back({u, v, samples.depth_m[s]});
+    }
+  }
+  // Arrived: the keyframe measures a surface (within the fusion's range) in front of the map's,
+  // or where its ray meets none.
+  for (int gy = 0; gy < grid.height; ++gy) {
+    for (int gx = 0; gx < grid.width; ++gx) {
+      const std::size_t s = static_cast<std::size_t>(gy) * grid.width + gx;
+      const int u = grid.pixelU(gx), v = grid.pixelV(gy);
+      const float measured_m = frame.depth.at(u, v);
+      if (!(measured_m > 0.0f) || !(measured_m <= config.max_depth_m)) continue;
+      if (samples.hit[s] && !(measured_m < samples.depth_m[s] - config.depth_tolerance_m)) continue;
+      view.arrived.push_back({u, v, measured_m});
     }
   }
   return view;
@@ -104,7 +116,7 @@ std::uint64_t placeKey(int u_px, int v_px, float surface_m, int stride_px) {
 
 }  // namespace
 
-std::size_t shareVacatedPlaces(std::vector<change::VacatedView>& views,
+std::size_t shareVacatedPlaces(std::vector<change::ChangedView>& views,
                                const std::vector<RgbdFrame>& frames,
                                const std::vector<std::uint8_t>& targets,
                                const CameraIntrinsics& intrinsics, const SupportConfig& config,
@@ -127,7 +139,7 @@ std::size_t shareVacatedPlaces(std::vector<change::VacatedView>& views,
   std::size_t added = 0;
   for (std::size_t k = 0; k < views.size(); ++k) {
     if (!targets[k]) continue;
-    change::VacatedView& view = views[k];
+    change::ChangedView& view = views[k];
     std::unordered_set<std::uint64_t> places;
     for (const change::VacatedSample& s : view.samples) {
       places.insert(placeKey(s.u_px, s.v_px, s.surface_m, stride_px));

@@ -65,12 +65,14 @@ std::vector<Eigen::Vector3f> vacatedPoints(const SampleRaycast& samples, const R
                                            const CameraIntrinsics& intrinsics,
                                            const SupportConfig& config);
 
-/// The samples of one scored keyframe that look beyond the map's surface (the vacated points'
-/// samples before any min_neighbours filter), with its pose and no depth yet (tiles of the grid's
-/// stride): free space change detection can integrate them without fusing the keyframe
-/// (change/carry_free.h) once change::keepDepthAround kept the depth around them; the selection
-/// loop does that only for the keyframes it skips.
-change::VacatedView vacatedView(const SampleRaycast& samples, const RgbdFrame& frame,
+/// The samples of one scored keyframe that disagree with the map, with its pose and no depth yet
+/// (tiles of the grid's stride): those that look beyond the map's surface (vacated; the vacated
+/// points' samples before any min_neighbours filter) and those that measure a surface in front of
+/// it, or where the ray meets none (arrived; within max_depth_m, beyond the tolerance). Change
+/// detection can integrate what they saw without fusing the keyframe (change/carry_free.h) once
+/// change::keepDepthAround kept the depth around them; the selection loop does that only for the
+/// keyframes it skips.
+change::ChangedView changedView(const SampleRaycast& samples, const RgbdFrame& frame,
                                 const SupportConfig& config);
 
 /// Shares the vacated places among the keyframes of a session: a removed thin object leaves
@@ -81,7 +83,7 @@ change::VacatedView vacatedView(const SampleRaycast& samples, const RgbdFrame& f
 /// depth, once per cell and 10 cm of depth. No depth is kept here (change::keepDepthAround does,
 /// once all samples are known). `views` and `frames`: one per keyframe, in order. Returns the
 /// samples added.
-std::size_t shareVacatedPlaces(std::vector<change::VacatedView>& views,
+std::size_t shareVacatedPlaces(std::vector<change::ChangedView>& views,
                                const std::vector<RgbdFrame>& frames,
                                const std::vector<std::uint8_t>& targets,
                                const CameraIntrinsics& intrinsics, const SupportConfig& config,

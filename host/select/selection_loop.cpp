@@ -45,7 +45,7 @@ LoopConfig demoLoopConfig(bool incremental) {
   // keyframes per session: every instance 20 -> 21 of 25 (complete 22; the session-2 printer
   // 0.43 -> found), arrivals 8 of 9 either way, precision 100 %. Tuned on that run.
   c.confirm.radius_scale = 1.5f;
-  c.keep_vacated_views = incremental;
+  c.keep_changed_views = incremental;
   return c;
 }
 
@@ -111,8 +111,8 @@ std::vector<std::vector<Eigen::Vector3f>> SelectionLoop::scoreSession(
     if (collect_points && config_.support.views > 0) {
       vacated_W.push_back(vacatedPoints(samples, frames[i], session.intrinsics(), config_.support));
     }
-    if (collect_points && config_.keep_vacated_views) {
-      run.vacated_views.push_back(vacatedView(samples, frames[i], config_.support));
+    if (collect_points && config_.keep_changed_views) {
+      run.changed_views.push_back(changedView(samples, frames[i], config_.support));
     }
     if (collect_points && config_.confirm.enabled) {
       const auto confirmed =
@@ -175,22 +175,22 @@ const SessionRun& SelectionLoop::addSession(const sim::SimSessionDataset& sessio
   }
   // Only the skipped keyframes' vacated samples are wanted: a fused keyframe gives its own. Their
   // depth is kept once, around their own and shared samples.
-  if (!run.vacated_views.empty()) {
+  if (!run.changed_views.empty()) {
     std::vector<std::uint8_t> skipped_flags(n);
     for (std::size_t i = 0; i < n; ++i) skipped_flags[i] = run.fused[i] ? 0 : 1;
     if (config_.share_vacated_places) {
       run.shared_vacated_samples =
-          shareVacatedPlaces(run.vacated_views, frames, skipped_flags, session.intrinsics(),
+          shareVacatedPlaces(run.changed_views, frames, skipped_flags, session.intrinsics(),
                              config_.support, config_.scorer.sample_stride_px);
     }
-    std::vector<change::VacatedView> skipped;
+    std::vector<change::ChangedView> skipped;
     for (std::size_t i = 0; i < n; ++i) {
       if (!skipped_flags[i]) continue;
       change::keepDepthAround(frames[i].depth, session.intrinsics(), freeSpace(config_),
-                              run.vacated_views[i]);
-      skipped.push_back(std::move(run.vacated_views[i]));
+                              run.changed_views[i]);
+      skipped.push_back(std::move(run.changed_views[i]));
     }
-    run.vacated_views = std::move(skipped);
+    run.changed_views = std::move(skipped);
   }
   for (std::size_t i = 0; i < n; ++i) {
     if (run.fused[i]) fusion_.integrate(frames[i], session.intrinsics());

@@ -42,9 +42,9 @@ struct LoopConfig {
   /// Incremental, sessions >= 1: keep the points the session's keyframes confirmed
   /// (SessionRun::confirmed; off by default, on in demoLoopConfig).
   ConfirmConfig confirm;
-  /// Incremental, sessions >= 1: keep the skipped keyframes' samples that look beyond the map
-  /// (SessionRun::vacated_views; off by default, on in demoLoopConfig).
-  bool keep_vacated_views = false;
+  /// Incremental, sessions >= 1: keep the skipped keyframes' samples that disagree with the map,
+  /// vacated and arrived (SessionRun::changed_views; off by default, on in demoLoopConfig).
+  bool keep_changed_views = false;
   /// ... with the keyframe's depth where the place around each can project (its cell_px is
   /// taken from scorer.sample_stride_px: freeSpace()).
   change::FreeSpaceConfig free_space;
@@ -74,9 +74,9 @@ struct SessionRun {
   /// weight, where the latest observation is the better value (office: printer in session 2,
   /// 0.00 -> 0.43 of it found).
   std::vector<change::ConfirmedPoint> confirmed;
-  /// Incremental with keep_vacated_views, sessions >= 1, one per skipped keyframe, in order: its
-  /// samples that look beyond the map (change/carry_free.h integrates them as free space).
-  std::vector<change::VacatedView> vacated_views;
+  /// Incremental with keep_changed_views, sessions >= 1, one per skipped keyframe, in order: its
+  /// samples that disagree with the map (change/carry_free.h integrates what they saw).
+  std::vector<change::ChangedView> changed_views;
   std::size_t shared_vacated_samples = 0;  // of them, taken from other keyframes
   double score_device_ms = 0.0;            // raycast device time, summed
   std::size_t fusedCount() const;
@@ -115,7 +115,7 @@ class SelectionLoop {
 
  private:
   /// Scores every keyframe. With `collect_points`, also appends every keyframe's confirmed points
-  /// to run.confirmed (when confirm is on), keeps its vacated samples (keep_vacated_views) and
+  /// to run.confirmed (when confirm is on), keeps its changed samples (keep_changed_views) and
   /// returns its vacated points (when support views are on; change_support.h), else nothing.
   std::vector<std::vector<Eigen::Vector3f>> scoreSession(
       const sim::SimSessionDataset& session, const std::vector<RgbdFrame>& frames, SessionRun& run,
