@@ -300,7 +300,10 @@ TEST(FreeSpace, AnArrivedSurfaceTakesWhatFusingTheKeyframeGivesIt) {
   FreeSpaceConfig off = placeConfig();
   off.arrived_ring_cells = 0;
   TsdfMap session(fusionConfig());
-  EXPECT_EQ(integrateChangedPlaces({view}, k, off, TsdfMap(fusionConfig()), session).voxels, 0u);
+  const FreeSpaceStats none =
+      integrateChangedPlaces({view}, k, off, TsdfMap(fusionConfig()), session);
+  EXPECT_EQ(none.voxels, 0u);
+  EXPECT_EQ(none.arrived_samples, 0u) << "arrived samples count only where they are used";
   EXPECT_EQ(session.blockCount(), 0u);
 }
 

@@ -155,7 +155,7 @@ TEST(ChangeDemo, DefaultRoomMeetsTheIssueTargets) {
                           "\"instances\": [{\"session\": ", "\"carried_forward\": {",
                           "\"free_space\": {\"skipped_keyframes\": ", "\"shared_samples\": ",
                           "\"depth_pixels_kept\": ", "\"arrived_samples\": ",
-                          "\"free_voxel_observations\": "}) {
+                          "\"free_voxel_observations\": ", "\"integration_s\": "}) {
     EXPECT_NE(report.incremental_json.find(key), std::string::npos) << key;
   }
   EXPECT_GE(inc.objects_incremental.found + 1, inc.objects_complete.found);

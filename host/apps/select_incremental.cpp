@@ -69,8 +69,11 @@ change::WorldEvaluation detectOnSelected(vk::Context& context, const sim::World&
       change::VoxelSet own;
       if (options.free_space) {
         const CameraIntrinsics& camera = sessions[session]->session().intrinsics();
+        const auto start = std::chrono::steady_clock::now();
         const change::FreeSpaceStats stats = change::integrateChangedPlaces(
             run.changed_views, camera, free_config, latest, layer, nullptr, &own);
+        r.free_space_s +=
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         r.free_space_pixels +=
             stats.views * static_cast<std::size_t>(camera.width_px) * camera.height_px;
         r.free_space.views += stats.views;

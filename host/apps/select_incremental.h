@@ -49,6 +49,7 @@ struct IncrementalResult {
   change::FreeSpaceStats free_space;
   std::size_t free_space_pixels = 0;
   std::size_t free_space_shared_samples = 0;  // of free_space.samples, shared among keyframes
+  double free_space_s = 0.0;  // wall time of integrating them (change::integrateChangedPlaces)
   /// The fused keyframes (selected or added) against the truth.
   selection::Confusion fused_confusion;
   double coverage_complete = 0.0;         // surface coverage of the map fused from every keyframe

@@ -87,7 +87,8 @@ std::string incrementalJson(const IncrementalResult& r) {
       << ", \"depth_pixels_kept\": " << r.free_space.depth_pixels
       << ", \"arrived_samples\": " << r.free_space.arrived_samples
       << ", \"voxel_observations\": " << r.free_space.voxels
-      << ", \"free_voxel_observations\": " << r.free_space.free_voxels << "}, \"fused_vs_truth\": ";
+      << ", \"free_voxel_observations\": " << r.free_space.free_voxels
+      << ", \"integration_s\": " << r.free_space_s << "}, \"fused_vs_truth\": ";
   const selection::Confusion& f = r.fused_confusion;
   out << "{\"recall\": " << f.recall() << ", \"precision\": " << f.precision()
       << ", \"accuracy\": " << f.accuracy()

@@ -118,22 +118,23 @@ std::unordered_map<BlockIndex, std::vector<Eigen::Vector3f>, BlockIndexHash> blo
   return near;
 }
 
-/// Whether the depth measures at least the truncation distance beyond `p_W` along its pixel's ray
-/// (the free observation of integrateVoxelReference, whatever distance it stores).
-bool measuresFreeAt(const Eigen::Vector3f& p_W, const DepthImage& depth, const FrameCamera& camera,
-                    const MapConfig& map) {
+/// How far beyond `p_W` the depth measures along its pixel's ray (the distance
+/// integrateVoxelReference bands with, whatever distance it stores); NaN where the point does not
+/// project into the image or its pixel holds no valid depth.
+float measuredBeyond(const Eigen::Vector3f& p_W, const DepthImage& depth, const FrameCamera& camera,
+                     const MapConfig& map) {
   const Eigen::Vector3f p_C = (camera.T_C_W * p_W.homogeneous()).head<3>();
-  if (!(p_C.z() > 0.0f)) return false;
+  if (!(p_C.z() > 0.0f)) return NAN;
   const float u = std::floor(camera.K[0] * p_C.x() / p_C.z() + camera.K[2] + 0.5f);
   const float v = std::floor(camera.K[1] * p_C.y() / p_C.z() + camera.K[3] + 0.5f);
   if (u < 0.0f || v < 0.0f || u >= static_cast<float>(depth.width_px) ||
       v >= static_cast<float>(depth.height_px)) {
-    return false;
+    return NAN;
   }
   const float d = depth.at(static_cast<int>(u), static_cast<int>(v));
-  if (!depthValid(d, map.min_depth_m, map.max_depth_m)) return false;
+  if (!depthValid(d, map.min_depth_m, map.max_depth_m)) return NAN;
   const float ray_scale = Eigen::Vector3f(p_C.x() / p_C.z(), p_C.y() / p_C.z(), 1.0f).norm();
-  return (d - p_C.z()) * ray_scale >= map.truncationDistance();
+  return (d - p_C.z()) * ray_scale;
 }
 
 /// The voxels of `place` that hold something (weight > 0, tsdf below truncation) within radius_m
@@ -162,15 +163,19 @@ VoxelSet placeVoxels(const std::vector<Eigen::Vector3f>& points_W, const TsdfMap
   return out;
 }
 
-/// The voxels within reach of the view's arrived samples' kept cells: a ball around each measured
-/// point as wide as the kept square at its depth (its diagonal) plus the truncation band.
+/// The voxels within reach of the view's arrived samples' kept cells: in a ball around each
+/// measured point as wide as the kept square at its depth (its diagonal) plus the truncation band,
+/// those that the kept `depth` can update (a valid pixel, not more than the truncation distance
+/// behind what it measures).
 VoxelSet arrivedVoxels(const ChangedView& view, const CameraIntrinsics& k,
-                       const FreeSpaceConfig& config, const MapConfig& map) {
+                       const FreeSpaceConfig& config, const MapConfig& map, const DepthImage& depth,
+                       const FrameCamera& camera) {
   VoxelSet out;
   if (config.arrived_ring_cells == 0) return out;
   const Eigen::Vector4f K(k.fx_px, k.fy_px, k.cx_px, k.cy_px);
   const float voxel_m = map.voxel_size_m;
   const float half_px = config.cell_px * (config.arrived_ring_cells + 0.5f);
+  const float truncation_m = map.truncationDistance();
   for (const ArrivedSample& s : view.arrived) {
     if (!(s.measured_m > 0.0f) || !std::isfinite(s.measured_m)) continue;
     const Eigen::Vector3f ray_C =
@@ -184,7 +189,12 @@ VoxelSet arrivedVoxels(const ChangedView& view, const CameraIntrinsics& k,
       for (int y = lo.y(); y <= hi.y(); ++y) {
         for (int x = lo.x(); x <= hi.x(); ++x) {
           const Eigen::Vector3f c = Eigen::Vector3f(x, y, z).array() + 0.5f;
-          if ((c - p_vox).squaredNorm() <= radius_vox * radius_vox) out.insert({x, y, z});
+          if ((c - p_vox).squaredNorm() > radius_vox * radius_vox) continue;
+          const GlobalVoxelIndex v(x, y, z);
+          if (out.count(v) > 0) continue;
+          // NaN (no depth) fails the comparison too.
+          const float beyond_m = measuredBeyond(voxelCenter(v, voxel_m), depth, camera, map);
+          if (beyond_m >= -truncation_m) out.insert(v);
         }
       }
     }
@@ -241,15 +251,15 @@ FreeSpaceStats integrateChangedPlaces(const std::vector<ChangedView>& views,
     const FrameCamera camera = FrameCamera::from(k, view.T_W_C.cast<double>());
     const std::vector<Eigen::Vector4f> normals_C = estimateNormalsReference(depth, camera, map);
     VoxelSet candidates = placeVoxels(samplePoints(view, k), place, config.place_radius_m);
-    const VoxelSet arrived = arrivedVoxels(view, k, config, map);
-    stats.arrived_samples += view.arrived.size();
+    const VoxelSet arrived = arrivedVoxels(view, k, config, map, depth, camera);
+    if (config.arrived_ring_cells > 0) stats.arrived_samples += view.arrived.size();
     candidates.insert(arrived.begin(), arrived.end());
     // Each voxel once per view: one observation per voxel and view, as fusing the keyframe would
     // give.
     for (const GlobalVoxelIndex& v : candidates) {
       const Eigen::Vector3f centre_W = voxelCenter(v, voxel_m);
       const TsdfVoxel* existing = session.findVoxel(v);
-      const bool free = measuresFreeAt(centre_W, depth, camera, map);
+      const bool free = measuredBeyond(centre_W, depth, camera, map) >= truncation_m;
       const TsdfVoxel* last = place.findVoxel(v);
       const bool last_surface =
           last != nullptr && last->weight > 0.0f && last->tsdf_m < truncation_m;

@@ -124,7 +124,7 @@ struct FreeSpaceStats {
   std::size_t samples = 0;          // their vacated samples
   std::size_t voxels = 0;           // voxel observations added, free or surface (once per view)
   std::size_t free_voxels = 0;      // ... of them free (the pixel measures truncation beyond)
-  std::size_t arrived_samples = 0;  // the views' arrived samples
+  std::size_t arrived_samples = 0;  // the views' arrived samples (0 with arrived_ring_cells 0)
   std::size_t depth_pixels = 0;     // pixels of depth kept with the views
 };
 
