@@ -484,28 +484,39 @@ void expectBoxA(const Eigen::AlignedBox3f& bbox) {
 const std::vector<Eigen::Vector3f> kEyes{
     {0.7f, 0.65f, 1.6f}, {0.6f, 0.7f, 1.5f}, {0.8f, 0.6f, 1.7f}};
 
-TEST(FreeSpace, ThreeUnfusedViewsOfAVacatedPlaceLetTheDetectorFindTheEarlierInstance) {
-  // Session 0: box A on the floor, everything observed. Session 1: the box is gone, and the
-  // session's own layer is unobserved within 0.3 m of it (it fused no frame of that place).
+/// What the reference detector finds of box A when session 0 holds `box_before` (everything
+/// observed), session 1 the other state of the box (its layer unobserved within 0.3 m of the box:
+/// it fused no frame of that place), and session 1's layer takes `views` unfused: box A's
+/// vacated place (box_before) or its arrived surface. Each stat and own evidence go to the
+/// caller; the objects are those of the session where the box stood.
+std::vector<DiscoveredObject> objectsFromUnfusedViews(bool box_before,
+                                                      const std::vector<ChangedView>& views,
+                                                      FreeSpaceStats& stats, VoxelSet& own) {
   const auto everywhere = [](const Eigen::Vector3d&) { return true; };
-  const CameraIntrinsics k = smallCamera();
-  std::vector<ChangedView> views;
-  for (const Eigen::Vector3f& eye_W : kEyes) views.push_back(boxView(eye_W, k, false));
   ChangeConfig config;
   config.min_weight = 3.0f;  // the demo's: three frames with constant weights
+  ChangeDetector detector(floorMap(box_before, everywhere).config(), config);
+  detector.endSession(detector.addSessionMap(floorMap(box_before, everywhere)));
+  const int second = detector.addSessionMap(floorMap(!box_before, awayFromBox));
+  TsdfMap layer = detector.sessionMap(second);
+  // The place: what session 0 last observed.
+  stats = integrateChangedPlaces(views, smallCamera(), placeConfig(), detector.sessionMap(0), layer,
+                                 nullptr, &own);
+  detector.replaceSessionMap(second, layer);
+  detector.endSession(second);
+  return sessionObjects(detector, box_before ? 0 : second);
+}
+
+TEST(FreeSpace, ThreeUnfusedViewsOfAVacatedPlaceLetTheDetectorFindTheEarlierInstance) {
+  // Session 0: box A on the floor. Session 1: the box is gone.
+  std::vector<ChangedView> views;
+  for (const Eigen::Vector3f& eye_W : kEyes) views.push_back(boxView(eye_W, smallCamera(), false));
   for (const std::size_t view_count : {0u, 2u, 3u}) {
-    ChangeDetector detector(floorMap(true, everywhere).config(), config);
-    detector.endSession(detector.addSessionMap(floorMap(true, everywhere)));
-    const int second = detector.addSessionMap(floorMap(false, awayFromBox));
-    TsdfMap layer = detector.sessionMap(second);
-    const std::vector<ChangedView> used(views.begin(), views.begin() + view_count);
-    // The place: what session 0 last observed.
-    const FreeSpaceStats stats =
-        integrateChangedPlaces(used, k, placeConfig(), detector.sessionMap(0), layer);
+    FreeSpaceStats stats;
+    VoxelSet own;
+    const auto objects =
+        objectsFromUnfusedViews(true, {views.begin(), views.begin() + view_count}, stats, own);
     EXPECT_EQ(stats.voxels > 0, view_count > 0);
-    detector.replaceSessionMap(second, layer);
-    detector.endSession(second);
-    const auto objects = sessionObjects(detector, 0);
     if (view_count < 3) {
       EXPECT_TRUE(objects.empty()) << view_count << " views leave the place below min_weight";
       continue;
@@ -516,30 +527,18 @@ TEST(FreeSpace, ThreeUnfusedViewsOfAVacatedPlaceLetTheDetectorFindTheEarlierInst
 }
 
 TEST(FreeSpace, ThreeUnfusedViewsOfAnArrivedObjectLetTheDetectorFindIt) {
-  // Session 0: the floor alone, everything observed. Session 1: box A stands on it, and the
-  // session's own layer is unobserved within 0.3 m of it (it fused no frame of that place).
-  const auto everywhere = [](const Eigen::Vector3d&) { return true; };
-  const CameraIntrinsics k = smallCamera();
+  // Session 0: the floor alone. Session 1: box A stands on it.
   std::vector<ChangedView> views;
-  for (const Eigen::Vector3f& eye_W : kEyes) views.push_back(boxView(eye_W, k, true));
-  ChangeConfig config;
-  config.min_weight = 3.0f;
+  for (const Eigen::Vector3f& eye_W : kEyes) views.push_back(boxView(eye_W, smallCamera(), true));
   for (const std::size_t view_count : {0u, 2u, 3u}) {
-    ChangeDetector detector(floorMap(false, everywhere).config(), config);
-    detector.endSession(detector.addSessionMap(floorMap(false, everywhere)));
-    const int second = detector.addSessionMap(floorMap(true, awayFromBox));
-    TsdfMap layer = detector.sessionMap(second);
-    const std::vector<ChangedView> used(views.begin(), views.begin() + view_count);
+    FreeSpaceStats stats;
     VoxelSet own;
-    const FreeSpaceStats stats = integrateChangedPlaces(
-        used, k, placeConfig(), detector.sessionMap(0), layer, nullptr, &own);
+    const auto objects =
+        objectsFromUnfusedViews(false, {views.begin(), views.begin() + view_count}, stats, own);
     EXPECT_EQ(stats.samples, 0u);
     EXPECT_EQ(stats.voxels > 0, view_count > 0);
     EXPECT_EQ(own.empty(), view_count == 0)
         << "the box's inside contradicts the floor's free space";
-    detector.replaceSessionMap(second, layer);
-    detector.endSession(second);
-    const auto objects = sessionObjects(detector, second);
     if (view_count < 3) {
       EXPECT_TRUE(objects.empty()) << view_count << " views leave the box below min_weight";
       continue;

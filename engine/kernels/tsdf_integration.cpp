@@ -47,31 +47,34 @@ std::uint32_t packedPixelColor(const ColorImage& color, int u, int v) {
   return packRgb(p[0], p[1], p[2]);
 }
 
-void integrateVoxelReference(TsdfVoxel& voxel, const Eigen::Vector3f& p_W, const DepthImage& depth,
-                             const std::vector<Eigen::Vector4f>* normals_C,
-                             const ColorImage* color, const FrameCamera& camera,
-                             const MapConfig& config) {
+VoxelObservation observeVoxelReference(const Eigen::Vector3f& p_W, const DepthImage& depth,
+                                       const std::vector<Eigen::Vector4f>* normals_C,
+                                       const FrameCamera& camera, const MapConfig& config) {
+  VoxelObservation o;
   const Eigen::Vector3f p_C = (camera.T_C_W * p_W.homogeneous()).head<3>();
-  if (p_C.z() <= 0.0f) return;
+  if (p_C.z() <= 0.0f) return o;
   const float u = camera.K[0] * p_C.x() / p_C.z() + camera.K[2];
   const float v = camera.K[1] * p_C.y() / p_C.z() + camera.K[3];
   const float pixel_u = std::floor(u + 0.5f);
   const float pixel_v = std::floor(v + 0.5f);
   if (pixel_u < 0.0f || pixel_v < 0.0f || pixel_u >= static_cast<float>(depth.width_px) ||
       pixel_v >= static_cast<float>(depth.height_px)) {
-    return;
+    return o;
   }
   const int pu = static_cast<int>(pixel_u);
   const int pv = static_cast<int>(pixel_v);
   const float d = depth.at(pu, pv);
-  if (!depthValid(d, config.min_depth_m, config.max_depth_m)) return;
+  if (!depthValid(d, config.min_depth_m, config.max_depth_m)) return o;
 
   const float truncation_m = config.truncationDistance();
   // The distance along the ray decides which voxels are updated (the band behind the surface),
   // whichever distance is stored.
   const float ray_sdf_m =
       (d - p_C.z()) * Eigen::Vector3f(p_C.x() / p_C.z(), p_C.y() / p_C.z(), 1.0f).norm();
-  if (ray_sdf_m < -truncation_m) return;
+  o.ray_sdf_m = ray_sdf_m;
+  o.u_px = pu;
+  o.v_px = pv;
+  if (ray_sdf_m < -truncation_m) return o;
   float sdf_m = ray_sdf_m;
   const Eigen::Vector4f normal =
       normals_C != nullptr ? (*normals_C)[static_cast<std::size_t>(pv) * depth.width_px + pu]
@@ -80,22 +83,34 @@ void integrateVoxelReference(TsdfVoxel& voxel, const Eigen::Vector3f& p_W, const
     const Eigen::Vector3f surface_C = pixelRay(pixel_u, pixel_v, camera.K) * d;
     sdf_m = normal.head<3>().dot(p_C - surface_C);
   }
-  const float tsdf_m = std::min(sdf_m, truncation_m);
+  o.tsdf_m = std::min(sdf_m, truncation_m);
 
   float weight = config.weight_mode == WeightMode::kConstant ? 1.0f : 1.0f / (d * d);
   const float dropoff_start_m = config.dropoff_start_voxels * config.voxel_size_m;
   if (config.weight_dropoff && sdf_m < -dropoff_start_m) {
     weight *= (truncation_m + sdf_m) / (truncation_m - dropoff_start_m);
   }
-  if (!(weight > 0.0f)) return;
+  if (weight > 0.0f) o.weight = weight;
+  return o;
+}
 
-  const float new_weight = voxel.weight + weight;
-  voxel.tsdf_m = (voxel.tsdf_m * voxel.weight + tsdf_m * weight) / new_weight;
+void applyObservation(TsdfVoxel& voxel, const VoxelObservation& o, const ColorImage* color,
+                      const MapConfig& config) {
+  if (!(o.weight > 0.0f)) return;
+  const float new_weight = voxel.weight + o.weight;
+  voxel.tsdf_m = (voxel.tsdf_m * voxel.weight + o.tsdf_m * o.weight) / new_weight;
   if (color != nullptr) {
-    voxel.color_rgba =
-        blendColor(voxel.color_rgba, packedPixelColor(*color, pu, pv), voxel.weight, weight);
+    voxel.color_rgba = blendColor(voxel.color_rgba, packedPixelColor(*color, o.u_px, o.v_px),
+                                  voxel.weight, o.weight);
   }
   voxel.weight = std::min(new_weight, config.max_weight);
+}
+
+void integrateVoxelReference(TsdfVoxel& voxel, const Eigen::Vector3f& p_W, const DepthImage& depth,
+                             const std::vector<Eigen::Vector4f>* normals_C, const ColorImage* color,
+                             const FrameCamera& camera, const MapConfig& config) {
+  applyObservation(voxel, observeVoxelReference(p_W, depth, normals_C, camera, config), color,
+                   config);
 }
 
 std::vector<BlockIndex> integrateFrameReference(TsdfMap& map, const RgbdFrame& frame,

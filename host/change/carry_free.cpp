@@ -118,25 +118,6 @@ std::unordered_map<BlockIndex, std::vector<Eigen::Vector3f>, BlockIndexHash> blo
   return near;
 }
 
-/// How far beyond `p_W` the depth measures along its pixel's ray (the distance
-/// integrateVoxelReference bands with, whatever distance it stores); NaN where the point does not
-/// project into the image or its pixel holds no valid depth.
-float measuredBeyond(const Eigen::Vector3f& p_W, const DepthImage& depth, const FrameCamera& camera,
-                     const MapConfig& map) {
-  const Eigen::Vector3f p_C = (camera.T_C_W * p_W.homogeneous()).head<3>();
-  if (!(p_C.z() > 0.0f)) return NAN;
-  const float u = std::floor(camera.K[0] * p_C.x() / p_C.z() + camera.K[2] + 0.5f);
-  const float v = std::floor(camera.K[1] * p_C.y() / p_C.z() + camera.K[3] + 0.5f);
-  if (u < 0.0f || v < 0.0f || u >= static_cast<float>(depth.width_px) ||
-      v >= static_cast<float>(depth.height_px)) {
-    return NAN;
-  }
-  const float d = depth.at(static_cast<int>(u), static_cast<int>(v));
-  if (!depthValid(d, map.min_depth_m, map.max_depth_m)) return NAN;
-  const float ray_scale = Eigen::Vector3f(p_C.x() / p_C.z(), p_C.y() / p_C.z(), 1.0f).norm();
-  return (d - p_C.z()) * ray_scale;
-}
-
 /// The voxels of `place` that hold something (weight > 0, tsdf below truncation) within radius_m
 /// of a point.
 VoxelSet placeVoxels(const std::vector<Eigen::Vector3f>& points_W, const TsdfMap& place,
@@ -165,17 +146,16 @@ VoxelSet placeVoxels(const std::vector<Eigen::Vector3f>& points_W, const TsdfMap
 
 /// The voxels within reach of the view's arrived samples' kept cells: in a ball around each
 /// measured point as wide as the kept square at its depth (its diagonal) plus the truncation band,
-/// those that the kept `depth` can update (a valid pixel, not more than the truncation distance
+/// those that the kept `depth` updates (a valid pixel, not more than the truncation distance
 /// behind what it measures).
 VoxelSet arrivedVoxels(const ChangedView& view, const CameraIntrinsics& k,
                        const FreeSpaceConfig& config, const MapConfig& map, const DepthImage& depth,
-                       const FrameCamera& camera) {
+                       const std::vector<Eigen::Vector4f>& normals_C, const FrameCamera& camera) {
   VoxelSet out;
   if (config.arrived_ring_cells == 0) return out;
   const Eigen::Vector4f K(k.fx_px, k.fy_px, k.cx_px, k.cy_px);
   const float voxel_m = map.voxel_size_m;
   const float half_px = config.cell_px * (config.arrived_ring_cells + 0.5f);
-  const float truncation_m = map.truncationDistance();
   for (const ArrivedSample& s : view.arrived) {
     if (!(s.measured_m > 0.0f) || !std::isfinite(s.measured_m)) continue;
     const Eigen::Vector3f ray_C =
@@ -192,9 +172,9 @@ VoxelSet arrivedVoxels(const ChangedView& view, const CameraIntrinsics& k,
           if ((c - p_vox).squaredNorm() > radius_vox * radius_vox) continue;
           const GlobalVoxelIndex v(x, y, z);
           if (out.count(v) > 0) continue;
-          // NaN (no depth) fails the comparison too.
-          const float beyond_m = measuredBeyond(voxelCenter(v, voxel_m), depth, camera, map);
-          if (beyond_m >= -truncation_m) out.insert(v);
+          const VoxelObservation o =
+              observeVoxelReference(voxelCenter(v, voxel_m), depth, &normals_C, camera, map);
+          if (o.weight > 0.0f) out.insert(v);
         }
       }
     }
@@ -251,35 +231,34 @@ FreeSpaceStats integrateChangedPlaces(const std::vector<ChangedView>& views,
     const FrameCamera camera = FrameCamera::from(k, view.T_W_C.cast<double>());
     const std::vector<Eigen::Vector4f> normals_C = estimateNormalsReference(depth, camera, map);
     VoxelSet candidates = placeVoxels(samplePoints(view, k), place, config.place_radius_m);
-    const VoxelSet arrived = arrivedVoxels(view, k, config, map, depth, camera);
+    const VoxelSet arrived = arrivedVoxels(view, k, config, map, depth, normals_C, camera);
     if (config.arrived_ring_cells > 0) stats.arrived_samples += view.arrived.size();
     candidates.insert(arrived.begin(), arrived.end());
     // Each voxel once per view: one observation per voxel and view, as fusing the keyframe would
     // give.
     for (const GlobalVoxelIndex& v : candidates) {
       const Eigen::Vector3f centre_W = voxelCenter(v, voxel_m);
+      // This view's observation alone, to compare with the last one before blending it.
+      const VoxelObservation observation =
+          observeVoxelReference(centre_W, depth, &normals_C, camera, map);
+      if (!(observation.weight > 0.0f)) continue;
+      const bool free = observation.ray_sdf_m >= truncation_m;
       const TsdfVoxel* existing = session.findVoxel(v);
-      const bool free = measuredBeyond(centre_W, depth, camera, map) >= truncation_m;
       const TsdfVoxel* last = place.findVoxel(v);
-      const bool last_surface =
-          last != nullptr && last->weight > 0.0f && last->tsdf_m < truncation_m;
+      const bool last_held = last != nullptr && last->weight > 0.0f;
       // Free space where nothing stood and nothing is held yet would only allocate (a voxel of
       // an allocated block may hold nothing).
       const bool held = existing != nullptr && existing->weight > 0.0f;
-      if (free && !held && !last_surface) continue;
-      // This view's observation alone, to compare with the last one.
-      TsdfVoxel observation{};
-      integrateVoxelReference(observation, centre_W, depth, &normals_C, nullptr, camera, map);
-      if (!(observation.weight > 0.0f)) continue;
+      if (free && !held && !(last_held && last->tsdf_m < truncation_m)) continue;
       TsdfVoxel voxel = existing != nullptr ? *existing : TsdfVoxel{};
-      integrateVoxelReference(voxel, centre_W, depth, &normals_C, nullptr, camera, map);
+      applyObservation(voxel, observation, nullptr, map);
       session.allocateVoxel(v) = voxel;
       ++stats.voxels;
       stats.free_voxels += free ? 1 : 0;
       if (updated != nullptr) updated->insert(v);
       // Own evidence: the observation puts the voxel on the other side of a surface than the last
       // one did (free where something stood, inside something where nothing stood).
-      const bool inside_last = last != nullptr && last->weight > 0.0f && last->tsdf_m < 0.0f;
+      const bool inside_last = last_held && last->tsdf_m < 0.0f;
       if (own != nullptr && (observation.tsdf_m < 0.0f) != inside_last) own->insert(v);
     }
   }

@@ -84,17 +84,13 @@ change::ChangedView changedView(const SampleRaycast& samples, const RgbdFrame& f
   for (int gy = 0; gy < grid.height; ++gy) {
     for (int gx = 0; gx < grid.width; ++gx) {
       const std::size_t s = static_cast<std::size_t>(gy) * grid.width + gx;
-      if (!beyond[s]) continue;
       const int u = grid.pixelU(gx), v = grid.pixelV(gy);
-      view.samples.push_back({u, v, samples.depth_m[s]});
-    }
-  }
-  // Arrived: the keyframe measures a surface (within the fusion's range) in front of the map's,
-  // or where its ray meets none.
-  for (int gy = 0; gy < grid.height; ++gy) {
-    for (int gx = 0; gx < grid.width; ++gx) {
-      const std::size_t s = static_cast<std::size_t>(gy) * grid.width + gx;
-      const int u = grid.pixelU(gx), v = grid.pixelV(gy);
+      if (beyond[s]) {
+        view.samples.push_back({u, v, samples.depth_m[s]});
+        continue;
+      }
+      // Arrived: the keyframe measures a surface (within the fusion's range) in front of the
+      // map's, or where its ray meets none.
       const float measured_m = frame.depth.at(u, v);
       if (!(measured_m > 0.0f) || !(measured_m <= config.max_depth_m)) continue;
       if (samples.hit[s] && !(measured_m < samples.depth_m[s] - config.depth_tolerance_m)) continue;
