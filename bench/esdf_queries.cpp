@@ -6,10 +6,10 @@
 #include <random>
 #include <thread>
 
-#include "apps/esdf_slice.h"
+#include "cli/esdf_slice.h"
 #include "esdf_runs.h"
-#include "kernels/esdf_query.h"
-#include "kernels/esdf_query_kernel.h"
+#include "esdf/esdf_query.h"
+#include "esdf/esdf_query_kernel.h"
 
 namespace strata::bench {
 namespace {

@@ -3,7 +3,7 @@
 // the same points (half near observed voxels, half anywhere in the map's box), their agreement,
 // and the time to render a slice picture.
 #include "json.h"
-#include "kernels/esdf.h"
+#include "esdf/esdf.h"
 #include "vk/vk.h"
 
 namespace strata::bench {

@@ -3,10 +3,10 @@
 #include <chrono>
 #include <cstdio>
 
-#include "apps/esdf_command.h"
+#include "cli/esdf_command.h"
 #include "esdf_queries.h"
 #include "fuse_runs.h"  // kWarmupFrames
-#include "kernels/device_fusion.h"
+#include "integrate/device_fusion.h"
 #include "summary.h"
 
 namespace strata::bench {

@@ -8,7 +8,7 @@
 
 #include "io/dataset.h"
 #include "json.h"
-#include "kernels/esdf.h"
+#include "esdf/esdf.h"
 #include "map/map_config.h"
 
 namespace strata::bench {

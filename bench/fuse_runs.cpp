@@ -3,7 +3,7 @@
 #include <chrono>
 #include <cstdio>
 
-#include "kernels/tsdf_integration.h"
+#include "integrate/tsdf_integration.h"
 #include "machine_info.h"
 #include "mesh/extract_mesh.h"
 #include "summary.h"

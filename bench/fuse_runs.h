@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "json.h"
-#include "kernels/device_fusion.h"
+#include "integrate/device_fusion.h"
 #include "map/map_config.h"
 #include "mesh/mesh.h"
 #include "preload.h"

@@ -9,9 +9,9 @@
 #include <mutex>
 #include <thread>
 
-#include "apps/mapper_core.h"
-#include "apps/mapper_node.h"
-#include "apps/play_publisher.h"
+#include "mapper_node/mapper_core.h"
+#include "mapper_node/mapper_node.h"
+#include "player/play_publisher.h"
 #include "core/error.h"
 #include "lcm/lcm_time.h"
 #include "strata/map_stats_t.hpp"

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "apps/mapper_options.h"
+#include "mapper_node/mapper_options.h"
 #include "core/types.h"
 #include "json.h"
 #include "vk/vk.h"

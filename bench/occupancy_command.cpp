@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <memory>
 
-#include "apps/sim_setup.h"
+#include "cli/sim_setup.h"
 #include "core/error.h"
 #include "eval/occupancy_compare.h"
 #include "json.h"

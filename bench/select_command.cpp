@@ -7,7 +7,7 @@
 
 #include "core/error.h"
 #include "json.h"
-#include "kernels/device_fusion.h"
+#include "integrate/device_fusion.h"
 #include "machine_info.h"
 #include "select/keyframe_scorer.h"
 #include "sim/session/sim_session.h"

@@ -6,3 +6,22 @@ function(strata_set_target_defaults target)
   endif()
   target_compile_features(${target} PUBLIC cxx_std_17)
 endfunction()
+
+# strata_library(<target> <name> [ROOT <dir>] [NO_INSTALL]): the conventions of every library:
+# ALIAS strata::<name> (the exported name too), includes relative to ROOT (engine/ by default;
+# installed under include/strata), warnings, and a place in the installed package.
+function(strata_library target name)
+  cmake_parse_arguments(ARG "NO_INSTALL" "ROOT" "" ${ARGN})
+  if(NOT ARG_ROOT)
+    set(ARG_ROOT "${PROJECT_SOURCE_DIR}/engine")
+  endif()
+  add_library(strata::${name} ALIAS ${target})
+  set_target_properties(${target} PROPERTIES EXPORT_NAME ${name} POSITION_INDEPENDENT_CODE ON)
+  target_include_directories(${target} PUBLIC $<BUILD_INTERFACE:${ARG_ROOT}>
+                                              $<INSTALL_INTERFACE:include/strata>
+                                              $<INSTALL_INTERFACE:include>)
+  strata_set_target_defaults(${target})
+  if(NOT ARG_NO_INSTALL)
+    set_property(GLOBAL APPEND PROPERTY STRATA_INSTALLED_TARGETS ${target})
+  endif()
+endfunction()

@@ -5,7 +5,7 @@
 #include <memory>
 #include <vector>
 
-#include "kernels/device_tsdf_map.h"
+#include "map/device_tsdf_map.h"
 #include "map/esdf_layer.h"
 #include "vk/vk.h"
 

@@ -1,6 +1,6 @@
 #include "fusion_fixture.h"
 
-#include "kernels/tsdf_integration.h"
+#include "integrate/tsdf_integration.h"
 
 namespace strata::test {
 

@@ -6,7 +6,7 @@
 #include <memory>
 
 #include "io/dataset.h"
-#include "kernels/device_fusion.h"
+#include "integrate/device_fusion.h"
 #include "map/tsdf_map.h"
 #include "vk/vk.h"
 

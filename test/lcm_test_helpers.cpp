@@ -3,7 +3,7 @@
 #include <unordered_map>
 
 #include "fusion_fixture.h"
-#include "lcm/block_mesh.h"
+#include "lcm/block_mesh_msg.h"
 #include "sim/world/world.h"
 #include "sim/world/world_paths.h"
 #include "strata/esdf_slice_t.hpp"

@@ -11,9 +11,9 @@
 #include <thread>
 #include <vector>
 
-#include "apps/mapper_core.h"
-#include "apps/mapper_node.h"
-#include "apps/play_publisher.h"
+#include "mapper_node/mapper_core.h"
+#include "mapper_node/mapper_node.h"
+#include "player/play_publisher.h"
 #include "sim/session/sim_session.h"
 #include "strata/change_event_t.hpp"
 #include "strata/keyframe_score_t.hpp"

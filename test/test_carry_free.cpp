@@ -13,7 +13,7 @@
 #include "change/objects.h"
 #include "change_test_scene.h"
 #include "core/error.h"
-#include "kernels/tsdf_integration.h"
+#include "integrate/tsdf_integration.h"
 
 namespace strata::change {
 namespace {

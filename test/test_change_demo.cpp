@@ -4,11 +4,11 @@
 
 #include <filesystem>
 
-#include "apps/demo_command.h"
-#include "apps/demo_report.h"
-#include "apps/diff_command.h"
-#include "apps/diff_overlay.h"
-#include "apps/sim_command.h"
+#include "cli/demo_command.h"
+#include "cli/demo_report.h"
+#include "cli/diff_command.h"
+#include "cli/diff_overlay.h"
+#include "cli/sim_command.h"
 #include "change/objects.h"
 #include "change_test_scene.h"
 #include "core/error.h"

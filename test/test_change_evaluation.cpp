@@ -2,10 +2,10 @@
 // positive segments, the static map's completeness and ghosts, visibility from rendered frames.
 #include <gtest/gtest.h>
 
-#include "change/evaluation.h"
-#include "change/evaluation_truth.h"
-#include "change/evaluation_visibility.h"
-#include "change/evaluation_world.h"
+#include "eval/evaluation.h"
+#include "eval/evaluation_truth.h"
+#include "eval/evaluation_visibility.h"
+#include "eval/evaluation_world.h"
 #include "change_test_scene.h"
 #include "core/error.h"
 #include "sim/world/world_paths.h"

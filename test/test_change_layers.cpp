@@ -7,9 +7,9 @@
 #include "change_pipeline_helpers.h"
 #include "core/error.h"
 #include "fusion_fixture.h"
-#include "kernels/change_device.h"
-#include "kernels/device_fusion.h"
-#include "kernels/esdf.h"
+#include "change/change_device.h"
+#include "integrate/device_fusion.h"
+#include "esdf/esdf.h"
 #include "map_compare.h"
 
 namespace strata {

@@ -8,9 +8,9 @@
 
 #include "change_pipeline_helpers.h"
 #include "fusion_fixture.h"
-#include "kernels/change_device.h"
-#include "kernels/change_reference.h"
-#include "kernels/device_fusion.h"
+#include "change/change_device.h"
+#include "change/change_reference.h"
+#include "integrate/device_fusion.h"
 #include "sim/session/sim_session.h"
 
 namespace strata {

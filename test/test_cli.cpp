@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "apps/fuse_command.h"
+#include "cli/fuse_command.h"
 #include "io/image_io.h"
 #include "io/tum_writer.h"
 #include "map/map_file.h"

@@ -10,7 +10,7 @@
 #include <string>
 
 #include "fusion_fixture.h"
-#include "kernels/esdf.h"
+#include "esdf/esdf.h"
 #include "sim/analytic_dataset.h"
 #include "sim/default_scene.h"
 #include "sim/session/sim_session.h"

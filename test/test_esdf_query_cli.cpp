@@ -5,9 +5,9 @@
 
 #include <filesystem>
 
-#include "apps/esdf_command.h"
-#include "apps/esdf_slice.h"
-#include "apps/fuse_command.h"
+#include "cli/esdf_command.h"
+#include "cli/esdf_slice.h"
+#include "cli/fuse_command.h"
 #include "core/error.h"
 #include "esdf_sphere_scene.h"
 #include "io/image_io.h"

@@ -9,8 +9,8 @@
 #include "esdf_query_compare.h"
 #include "esdf_sphere_scene.h"
 #include "fusion_fixture.h"
-#include "kernels/esdf.h"
-#include "kernels/esdf_query_kernel.h"
+#include "esdf/esdf.h"
+#include "esdf/esdf_query_kernel.h"
 #include "sim/analytic_dataset.h"
 
 namespace strata {

@@ -6,9 +6,9 @@
 #include <array>
 
 #include "core/error.h"
-#include "kernels/esdf.h"
-#include "kernels/tsdf_integration.h"
-#include "lcm/block_mesh.h"
+#include "esdf/esdf.h"
+#include "integrate/tsdf_integration.h"
+#include "lcm/block_mesh_msg.h"
 #include "lcm/esdf_slice_msg.h"
 #include "lcm/frame_assembler.h"
 #include "lcm/frame_queue.h"
@@ -136,7 +136,7 @@ TEST(LcmBlockMesh, BlockMeshesTogetherAreTheWholeMapsMesh) {
   const Mesh whole = extractMesh(map);
   ASSERT_GT(whole.triangles.size(), 100u);
   Mesh joined;
-  for (const mesh_block_t& block : meshBlocks(map, map.sortedBlockIndices())) {
+  for (const mesh_block_t& block : meshBlockMessages(map, map.sortedBlockIndices())) {
     const Mesh part = toMesh(block);
     const int offset = static_cast<int>(joined.vertices.size());
     joined.vertices.insert(joined.vertices.end(), part.vertices.begin(), part.vertices.end());

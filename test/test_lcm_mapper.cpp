@@ -5,7 +5,7 @@
 
 #include <filesystem>
 
-#include "apps/fuse_command.h"
+#include "cli/fuse_command.h"
 #include "core/atomic_file.h"
 #include "io/dataset.h"
 #include "io/tum_writer.h"

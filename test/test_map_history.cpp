@@ -5,7 +5,7 @@
 #include <memory>
 
 #include "core/error.h"
-#include "select/map_history.h"
+#include "eval/map_history.h"
 
 namespace strata::selection {
 namespace {

@@ -12,9 +12,9 @@
 
 #include "core/error.h"
 #include "fusion_fixture.h"
-#include "kernels/device_fusion.h"
-#include "kernels/occupancy_device.h"
-#include "kernels/occupancy_reference.h"
+#include "integrate/device_fusion.h"
+#include "occupancy/occupancy_device.h"
+#include "occupancy/occupancy_reference.h"
 #include "sim/analytic_dataset.h"
 #include "sim/session/sim_session.h"
 #include "sim/world/world_paths.h"

@@ -6,11 +6,11 @@
 #include <cstdio>
 #include <memory>
 
-#include "apps/sim_setup.h"
+#include "cli/sim_setup.h"
 #include "eval/occupancy_compare.h"
 #include "eval/occupancy_nearest.h"
 #include "fusion_fixture.h"
-#include "kernels/occupancy_reference.h"
+#include "occupancy/occupancy_reference.h"
 #include "mesh/mesh_metrics.h"
 #include "sim/analytic_dataset.h"
 #include "sim/session/sim_session.h"

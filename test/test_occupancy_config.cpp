@@ -6,7 +6,7 @@
 
 #include "core/error.h"
 #include "fusion_fixture.h"
-#include "kernels/occupancy_device.h"
+#include "occupancy/occupancy_device.h"
 
 namespace strata {
 namespace {

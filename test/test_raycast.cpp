@@ -8,7 +8,7 @@
 #include "core/error.h"
 #include "fusion_fixture.h"
 #include "io/dataset.h"
-#include "kernels/raycast.h"
+#include "raycast/raycast.h"
 #include "sim/analytic_dataset.h"
 #include "test_utils.h"
 

@@ -7,12 +7,12 @@
 
 #include "core/error.h"
 #include "fusion_fixture.h"
-#include "kernels/raycast.h"
-#include "kernels/select_differences.h"
-#include "kernels/select_samples.h"
+#include "raycast/raycast.h"
+#include "select/select_differences.h"
+#include "select/select_samples.h"
 #include "select/keyframe_scorer.h"
 #include "select/keyframe_selection.h"
-#include "select/selection_eval.h"
+#include "eval/selection_eval.h"
 #include "sim/analytic_dataset.h"
 
 namespace strata::selection {

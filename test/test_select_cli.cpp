@@ -8,10 +8,10 @@
 #include <string>
 #include <tuple>
 
-#include "apps/demo_command.h"
-#include "apps/select_command.h"
-#include "apps/select_outputs.h"
-#include "apps/select_plot.h"
+#include "cli/demo_command.h"
+#include "cli/select_command.h"
+#include "cli/select_outputs.h"
+#include "cli/select_plot.h"
 #include "fusion_fixture.h"
 #include "io/tum_writer.h"
 #include "map/map_file.h"

@@ -10,7 +10,7 @@
 #include <memory>
 
 #include "fusion_fixture.h"
-#include "select/selection_report.h"
+#include "eval/selection_report.h"
 #include "sim/world/world_paths.h"
 
 namespace strata::selection {

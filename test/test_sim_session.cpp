@@ -5,8 +5,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "apps/demo_command.h"
-#include "apps/sim_command.h"
+#include "cli/demo_command.h"
+#include "cli/sim_command.h"
 #include "io/dataset.h"
 #include "sim/session/sim_session.h"
 #include "sim/world/world_paths.h"

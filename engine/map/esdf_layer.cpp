@@ -18,6 +18,8 @@ void EsdfConfig::validate(float voxel_size_m) const {
     problem << "site_threshold_voxels = " << site_threshold_voxels << " must be positive";
   } else if (!std::isfinite(min_weight) || min_weight <= 0.0f) {
     problem << "min_weight = " << min_weight << " must be positive";
+  } else if (tsdf_layer < 0) {
+    problem << "tsdf_layer = " << tsdf_layer << " must be 0 or more";
   }
   if (!problem.str().empty()) throw InputError("invalid ESDF config: " + problem.str());
 }

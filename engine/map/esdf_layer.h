@@ -20,6 +20,8 @@ struct EsdfConfig {
   float site_threshold_voxels = 1.0f;
   /// TSDF voxels with less weight are unknown (neither site nor free).
   float min_weight = 1e-3f;
+  /// TSDF layer of the device map the ESDF follows (0: the default layer).
+  int tsdf_layer = 0;
 
   /// Throws InputError naming the bad field.
   void validate(float voxel_size_m) const;

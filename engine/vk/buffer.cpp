@@ -4,7 +4,7 @@
 #include <utility>
 
 #include "core/error.h"
-#include "vk/context_impl.h"
+#include "vk/internal/context_impl.h"
 #include "vk/result.h"
 
 namespace strata::vk {

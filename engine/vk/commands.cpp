@@ -2,7 +2,7 @@
 #include <utility>
 
 #include "core/error.h"
-#include "vk/context_impl.h"
+#include "vk/internal/context_impl.h"
 #include "vk/result.h"
 #include "vk/transfer.h"
 

@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "core/error.h"
-#include "vk/context_impl.h"
+#include "vk/internal/context_impl.h"
 #include "vk/device_features.h"
 #include "vk/device_pick.h"
 #include "vk/instance.h"

@@ -3,7 +3,7 @@
 
 #include "core/error.h"
 #include "core/shader_registry.h"
-#include "vk/context_impl.h"
+#include "vk/internal/context_impl.h"
 #include "vk/result.h"
 
 namespace strata::vk {

@@ -5,8 +5,8 @@
 
 #include "core/error.h"
 #include "eval/occupancy_nearest.h"
-#include "kernels/device_fusion.h"
-#include "kernels/occupancy_device.h"
+#include "integrate/device_fusion.h"
+#include "occupancy/occupancy_device.h"
 #include "mesh/extract_mesh.h"
 #include "mesh/ply.h"
 

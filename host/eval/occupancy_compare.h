@@ -9,8 +9,8 @@
 
 #include "eval/accuracy.h"
 #include "io/dataset.h"
-#include "kernels/occupancy_config.h"
-#include "kernels/occupancy_map.h"
+#include "occupancy/occupancy_config.h"
+#include "occupancy/occupancy_map.h"
 #include "map/map_config.h"
 #include "mesh/mesh.h"
 #include "vk/vk.h"

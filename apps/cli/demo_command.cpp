@@ -1,0 +1,232 @@
+#include "cli/demo_command.h"
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <future>
+
+#include "cli/demo_report.h"
+#include "cli/diff_outputs.h"
+#include "cli/diff_pipeline.h"
+#include "cli/progress.h"
+#include "cli/select_incremental.h"
+#include "cli/sim_setup.h"
+#include "cli/views.h"
+#include "eval/evaluation_session.h"
+#include "eval/evaluation_world.h"
+#include "core/error.h"
+#include "eval/accuracy.h"
+#include "io/image_io.h"
+#include "raycast/raycast.h"
+#include "mesh/ply.h"
+
+namespace strata::apps {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+using Sessions = std::vector<std::unique_ptr<change::RecordingSession>>;
+
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// A half-resolution view of a session's own map from its first pose (host raycast: the device
+/// map's layer 0 is the static map).
+ColorImage sessionView(const TsdfMap& map, const sim::SimSessionDataset& session) {
+  CameraIntrinsics k = session.intrinsics();
+  k.width_px /= 2;
+  k.height_px /= 2;
+  k.fx_px /= 2;
+  k.fy_px /= 2;
+  k.cx_px = (k.cx_px + 0.5f) / 2 - 0.5f;
+  k.cy_px = (k.cy_px + 0.5f) / 2 - 0.5f;
+  const Eigen::Isometry3d& T_W_C = session.givenPoses().front();
+  return shadedView(raycastReference(map, k, T_W_C), T_W_C);
+}
+
+/// Accuracy against the session's true geometry, and the per-session files.
+SessionResult sessionResult(const DiffSession& fused, const TsdfMap& map,
+                            const sim::SimSessionDataset& session, const fs::path& out) {
+  SessionResult r;
+  r.session = session.session();
+  r.frames = fused.frames;
+  r.recorded_frames = session.recordedFrames();
+  r.render_s = fused.load_s;
+  r.fuse_wall_ms = fused.fuse_wall_ms;
+  r.fuse_device_ms = fused.fuse_device_ms;
+  r.blocks = map.blockCount();
+  r.mesh_vertices = fused.surface.mesh.vertices.size();
+  const auto truth = [&](const Eigen::Vector3d& p) {
+    return static_cast<double>(session.scene().signedDistance(p.cast<float>()));
+  };
+  r.tsdf = eval::evaluateTsdf(map, truth, 0.5f * map.config().truncationDistance());
+  r.mesh = eval::evaluateMesh(fused.surface.mesh, truth, map.config().voxel_size_m);
+  r.changed_ids = session.world().session(session.session()).changedIds();
+  r.objects = fused.objects.size();
+  const std::string stem = "session_" + std::to_string(session.session());
+  writePly((out / (stem + "_mesh.ply")).string(), fused.surface.mesh);
+  writePly((out / (stem + "_truth.ply")).string(), session.world().sessionMesh(session.session()));
+  writeColorPng((out / (stem + "_view.png")).string(), sessionView(map, session));
+  return r;
+}
+
+change::WorldEvaluation evaluate(const sim::World& world, const DiffResult& result,
+                                 const Sessions& sessions, const change::ChangeConfig& config) {
+  std::vector<std::vector<change::DiscoveredObject>> objects;
+  std::vector<const change::VisibleSurface*> seen;
+  for (std::size_t s = 0; s < sessions.size(); ++s) {
+    objects.push_back(result.sessions[s].objects);
+    seen.push_back(&sessions[s]->seen());
+  }
+  change::EvaluationConfig eval_config;
+  // Constant weights: a voxel is observed from min_weight frames on; judge the truth alike.
+  eval_config.min_views = config.minFrames();
+  return change::evaluateWorld(world, objects, result.static_mesh, seen, eval_config);
+}
+
+/// Fuses every session (recording what it saw) and runs change detection.
+DiffResult detectChanges(vk::Context& context, const MapConfig& map_config, const DiffRunInfo& info,
+                         const Sessions& sessions, bool quiet, std::vector<TsdfMap>& maps) {
+  std::size_t total = 0, done = 0;
+  for (const auto& session : sessions) total += session->size();
+  DiffPipeline pipeline(context, map_config, info.change, info.objects);
+  ProgressBar progress("simulate + fuse + detect changes", total, !quiet);
+  for (const auto& session : sessions)
+    pipeline.addSession(*session, session->name(), progress, done);
+  progress.finish();
+  return pipeline.finish(&maps);
+}
+
+}  // namespace
+
+DemoReport runDemoPipeline(const DemoOptions& o) {
+  const auto start = Clock::now();
+  if (o.incremental) {  // before minutes of fusion, not after
+    selection::SelectionConfig check;
+    check.smoothing_window = o.select.smoothing_window;
+    check.dilation = o.select.dilation;
+    check.validate();
+    selection::SupportConfig support;
+    support.min_points = o.select.change_view_min_points;
+    support.validate();
+  }
+  const auto world = loadWorld(o.world, o.seed, o.sessions);
+  const sim::SimSessionConfig config = sessionConfig(30.0, o.frames, !o.no_noise, false);
+  const MapConfig map_config = changeMapConfig(o.voxel_size_m);  // min_weight counts frames
+  DiffRunInfo info;
+  info.change.min_weight = o.min_weight;
+  vk::ContextOptions context_options;
+  context_options.device_selector = o.device;
+  const auto context = vk::Context::create(context_options);
+  info.device = context->deviceName();
+  info.map_config = map_config.describe();
+  const fs::path out(o.out_dir);
+  fs::create_directories(out);
+  Sessions sessions;
+  for (int s = 0; s < world->sessionCount(); ++s) {
+    sessions.push_back(std::make_unique<change::RecordingSession>(
+        std::make_shared<sim::SimSessionDataset>(world, s, config)));
+  }
+  std::vector<TsdfMap> maps;
+  const DiffResult result = detectChanges(*context, map_config, info, sessions, o.quiet, maps);
+  const DiffFiles files = writeDiffFiles(result, o.out_dir);
+  DemoReport report{world->name(), world->seed(), info.map_config, info.device};
+  // Sessions in parallel: the ground-truth distance queries of the accuracy dominate, and the
+  // scenes answer them from any thread.
+  std::vector<std::future<SessionResult>> results;
+  for (std::size_t s = 0; s < sessions.size(); ++s) {
+    results.push_back(std::async(std::launch::async, [&, s] {
+      return sessionResult(result.sessions[s], maps[s], sessions[s]->session(), out);
+    }));
+  }
+  for (auto& r : results) report.sessions.push_back(r.get());
+  report.evaluation = evaluate(*world, result, sessions, info.change);
+  if (o.incremental) {
+    const IncrementalResult incremental =
+        runIncremental(*context, *world, sessions, map_config, info, report.evaluation, o.out_dir,
+                       o.quiet, o.select);
+    report.incremental_summary = summarizeIncremental(incremental);
+    report.incremental_json = incrementalJson(incremental);
+    report.incremental = incremental;
+  }
+  report.total_s = info.total_s = secondsSince(start);
+  writeDemoReport(report, result, files, info, (out / "report.json").string());
+  return report;
+}
+
+CLI::App* addDemoCommand(CLI::App& app, DemoOptions& o) {
+  CLI::App* demo = app.add_subcommand("demo", "Multi-session demo on a synthetic world");
+  demo->add_option("world", o.world, "World file (YAML); default: the shipped single room");
+  demo->add_option("--sessions", o.sessions, "Sessions (default: the world's)");
+  demo->add_option("--out", o.out_dir, "Output folder")->capture_default_str();
+  demo->add_option("--seed", o.seed, "Override the world's seed");
+  demo->add_option("--frames", o.frames, "Frames per session")->capture_default_str();
+  demo->add_option("--voxel-size", o.voxel_size_m, "Voxel edge, metres")->capture_default_str();
+  demo->add_option("--min-weight", o.min_weight,
+                   "Frames a voxel must be seen in to count as observed")
+      ->capture_default_str();
+  demo->add_flag("--no-noise", o.no_noise, "Exact depth");
+  demo->add_option("--device", o.device, "Vulkan device index or name substring");
+  demo->add_flag("--quiet", o.quiet, "No progress bar");
+  demo->add_flag("--incremental", o.incremental,
+                 "Also select keyframes and fuse only those (issue 6); about doubles the time");
+  demo->add_option("--select-window", o.select.smoothing_window,
+                   "With --incremental: moving-average window of the selection, keyframes (odd)")
+      ->capture_default_str();
+  demo->add_flag("--change-views", o.select.change_views,
+                 "With --incremental: also fuse keyframes that see vacated places, until each is "
+                 "seen by the change detector's minimum of frames");
+  demo->add_option("--change-view-min-points", o.select.change_view_min_points,
+                   "With --incremental: vacated points short of views a keyframe must pass to be "
+                   "added as a view for change detection")
+      ->capture_default_str();
+  demo->add_flag(
+      "--no-carry-forward", [&o](std::int64_t) { o.select.carry_forward = false; },
+      "With --incremental: change detection on the fused keyframes only, nothing carried forward "
+      "where keyframes confirmed the map");
+  demo->add_flag(
+      "--no-free-space", [&o](std::int64_t) { o.select.free_space = false; },
+      "With --incremental: change detection takes nothing from skipped keyframes (neither free "
+      "space through vacated places nor arrived surfaces)");
+  demo->add_flag(
+      "--no-shared-vacated", [&o](std::int64_t) { o.select.free_space_shared = false; },
+      "With --incremental: a skipped keyframe's free space comes from its own vacated samples "
+      "only, not also from the places other keyframes found that it looks through");
+  demo->add_option("--free-space-radius", o.select.free_space_radius_m,
+                   "With --incremental: metres around each vacated sample in which the last "
+                   "observations are tested against skipped keyframes' depth for free space")
+      ->check(CLI::Range(0.01, 2.0))
+      ->capture_default_str();
+  demo->add_option("--arrived-ring", o.select.arrived_ring_cells,
+                   "With --incremental: sample cells of skipped keyframes' depth kept on each side "
+                   "of a sample that measures something in front of the map, whose surface change "
+                   "detection then takes (0: none)")
+      ->check(CLI::Range(0, 8))
+      ->capture_default_str();
+  demo->add_option("--select-dilation", o.select.dilation,
+                   "With --incremental: keyframes added on each side of a selected one")
+      ->capture_default_str();
+  return demo;
+}
+
+int runDemo(const DemoOptions& o) {
+  try {
+    const DemoReport report = runDemoPipeline(o);
+    std::printf("%s\n", summarizeDemo(report, o.out_dir).c_str());
+    return 0;
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "strata demo: input error: %s\n", e.what());
+    return 2;
+  } catch (const DeviceError& e) {
+    std::fprintf(stderr, "strata demo: device error: %s\n", e.what());
+    return 3;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "strata demo: error: %s\n", e.what());
+    return 1;
+  }
+}
+
+}  // namespace strata::apps

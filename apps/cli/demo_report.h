@@ -1,0 +1,50 @@
+#pragma once
+// What the multi-session demo measured, as JSON and as a closing paragraph.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cli/diff_report.h"
+#include "cli/select_incremental.h"
+#include "eval/evaluation_world.h"
+#include "eval/accuracy.h"
+
+namespace strata::apps {
+
+struct SessionResult {
+  int session = 0;
+  std::size_t frames = 0;
+  std::size_t recorded_frames = 0;  // of the full recording at 30 Hz (frames are spread over it)
+  double render_s = 0.0;
+  double fuse_wall_ms = 0.0;    // summed over frames
+  double fuse_device_ms = 0.0;  // summed over frames
+  std::size_t blocks = 0;
+  std::size_t mesh_vertices = 0;
+  eval::TsdfAccuracy tsdf;
+  eval::MeshAccuracy mesh;
+  std::vector<int> changed_ids;  // objects changed since the previous session
+  std::size_t objects = 0;       // discovered
+};
+
+struct DemoReport {
+  std::string world;
+  std::uint64_t seed = 0;
+  std::string map_config;
+  std::string device;
+  std::vector<SessionResult> sessions;
+  change::WorldEvaluation evaluation;  // discovered objects and static map against the truth
+  double total_s = 0.0;
+  std::string incremental_summary;               // `--incremental` (issue 6), "" without
+  std::string incremental_json;                  // the same as a JSON object, "" without
+  std::optional<IncrementalResult> incremental;  // the figures behind both
+};
+
+/// Writes the report as JSON, atomically: the demo's figures, the evaluation and the change
+/// detection's own members (writeDiffJsonMembers).
+void writeDemoReport(const DemoReport& report, const DiffResult& result, const DiffFiles& files,
+                     const DiffRunInfo& info, const std::string& path);
+/// One paragraph for the terminal.
+std::string summarizeDemo(const DemoReport& report, const std::string& out_dir);
+
+}  // namespace strata::apps

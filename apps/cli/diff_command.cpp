@@ -1,0 +1,162 @@
+#include "cli/diff_command.h"
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+
+#include "cli/diff_outputs.h"
+#include "cli/diff_pipeline.h"
+#include "cli/diff_report.h"
+#include "core/error.h"
+#include "map/map_file.h"
+
+namespace strata::apps {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// Every `stride`-th frame of a dataset, at most `limit` of them (0: no limit).
+class FrameSelection : public Dataset {
+ public:
+  FrameSelection(std::unique_ptr<Dataset> inner, int stride, int limit)
+      : inner_(std::move(inner)), stride_(static_cast<std::size_t>(stride)) {
+    count_ = (inner_->size() + stride_ - 1) / stride_;
+    if (limit > 0) count_ = std::min(count_, static_cast<std::size_t>(limit));
+  }
+  std::string name() const override { return inner_->name(); }
+  std::size_t size() const override { return count_; }
+  CameraIntrinsics intrinsics() const override { return inner_->intrinsics(); }
+  RgbdFrame load(std::size_t index) const override { return inner_->load(index * stride_); }
+
+ private:
+  std::unique_ptr<Dataset> inner_;
+  std::size_t stride_;
+  std::size_t count_ = 0;
+};
+
+/// One session as given: frames from a folder, or a saved map.
+struct SessionInput {
+  std::string path;
+  std::unique_ptr<Dataset> frames;
+  std::unique_ptr<TsdfMap> map;
+};
+
+/// Opens every session before any work, so a bad path fails at once, naming it.
+std::vector<SessionInput> openSessions(const DiffOptions& o) {
+  for (const std::string& path : o.sessions) {
+    if (!fs::exists(path)) throw InputError("session '" + path + "' does not exist");
+  }
+  if (o.sessions.size() < 2) throw InputError("diff needs at least two sessions to compare");
+  std::vector<SessionInput> inputs;
+  for (const std::string& path : o.sessions) {
+    SessionInput input{path, nullptr, nullptr};
+    if (fs::is_regular_file(path)) {
+      input.map = std::make_unique<TsdfMap>(loadMap(path));
+    } else {
+      input.frames = std::make_unique<FrameSelection>(openDataset(path, o.dataset_options),
+                                                      o.stride, o.frames);
+    }
+    inputs.push_back(std::move(input));
+  }
+  return inputs;
+}
+
+/// The first saved map's grid when there is one (layers must agree voxel for voxel), else the
+/// options'.
+MapConfig mapConfigFor(const DiffOptions& o, const std::vector<SessionInput>& inputs) {
+  for (const SessionInput& input : inputs) {
+    if (input.map) return input.map->config();
+  }
+  MapConfig config = changeMapConfig(o.voxel_size_m);
+  config.weight_mode =
+      o.weight == "inv-z2" ? WeightMode::kInverseDepthSquared : WeightMode::kConstant;
+  return config;
+}
+
+void runChecked(const DiffOptions& o) {
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<SessionInput> inputs = openSessions(o);
+  if (o.out_dir.empty()) throw InputError("--out DIR is required");
+  fs::create_directories(o.out_dir);
+  DiffRunInfo info;
+  info.change.min_weight = o.min_weight;
+  // --min-weight counts recorded frames; every stride-th frame stands for `stride` of them.
+  info.change = info.change.forSubsampling(o.stride);
+  info.change.difference_threshold_m = o.difference_threshold_m;
+  const MapConfig map_config = mapConfigFor(o, inputs);
+  vk::ContextOptions context_options;
+  context_options.device_selector = o.device;
+  const auto context = vk::Context::create(context_options);
+  info.device = context->deviceName();
+  info.map_config = map_config.describe();
+  DiffPipeline pipeline(*context, map_config, info.change, info.objects);
+  std::size_t total = 0, done = 0;
+  for (const SessionInput& input : inputs) total += input.frames ? input.frames->size() : 0;
+  ProgressBar progress("diff: fuse sessions", total, !o.quiet);
+  for (const SessionInput& input : inputs) {
+    if (input.map) {
+      pipeline.addSessionMap(*input.map, input.path);
+    } else {
+      pipeline.addSession(*input.frames, input.path, progress, done);
+    }
+  }
+  progress.finish();
+  if (!o.quiet) std::fprintf(stderr, "diff: meshing and discovering objects...\n");
+  const DiffResult result = pipeline.finish();
+  const DiffFiles files = writeDiffFiles(result, o.out_dir);
+  info.total_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  writeDiffReport((fs::path(o.out_dir) / "report.json").string(), result, files, info);
+  std::printf("%s\n", summarizeDiff(result, info, o.out_dir).c_str());
+}
+
+}  // namespace
+
+CLI::App* addDiffCommand(CLI::App& app, DiffOptions& o) {
+  CLI::App* diff = app.add_subcommand(
+      "diff", "Multi-session change detection: static map, moved objects per session");
+  diff->add_option("sessions", o.sessions,
+                   "Session folders (TUM RGB-D / 7-Scenes, e.g. from `strata sim`) or saved "
+                   ".strata maps, oldest first")
+      ->required();
+  diff->add_option("--out", o.out_dir, "Output folder")->required();
+  diff->add_option("--voxel-size", o.voxel_size_m, "Voxel edge, metres (saved maps keep theirs)")
+      ->capture_default_str();
+  diff->add_option("--weight", o.weight,
+                   "Observation weight: constant (min weight counts frames) | inv-z2")
+      ->check(CLI::IsMember({"constant", "inv-z2"}))
+      ->capture_default_str();
+  diff->add_option("--min-weight", o.min_weight,
+                   "Weight below which a voxel is unobserved (constant weights: recorded frames "
+                   "that saw it; divided by --stride)")
+      ->capture_default_str();
+  diff->add_option("--threshold", o.difference_threshold_m,
+                   "Distance change that labels a voxel dynamic, metres")
+      ->capture_default_str();
+  diff->add_option("--frames", o.frames, "Fuse at most N frames per session (0: all)");
+  diff->add_option("--stride", o.stride, "Use every N-th frame")->check(CLI::PositiveNumber);
+  diff->add_option("--device", o.device, "Vulkan device index or name substring");
+  diff->add_option("--format", o.dataset_options.format, "Dataset layout: auto | tum | 7scenes")
+      ->check(CLI::IsMember({"auto", "tum", "7scenes"}));
+  diff->add_option("--camera", o.dataset_options.camera_file, "Camera YAML for every session");
+  diff->add_flag("--quiet", o.quiet, "No progress bar");
+  return diff;
+}
+
+int runDiff(const DiffOptions& o) {
+  try {
+    runChecked(o);
+    return 0;
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "strata diff: input error: %s\n", e.what());
+    return 2;
+  } catch (const DeviceError& e) {
+    std::fprintf(stderr, "strata diff: device error: %s\n", e.what());
+    return 3;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "strata diff: error: %s\n", e.what());
+    return 1;
+  }
+}
+
+}  // namespace strata::apps

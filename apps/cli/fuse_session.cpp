@@ -1,0 +1,217 @@
+#include "cli/fuse_session.h"
+
+#include <sys/resource.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "cli/esdf_slice.h"
+#include "cli/progress.h"
+#include "cli/views.h"
+#include "core/error.h"
+#include "eval/accuracy.h"
+#include "io/image_io.h"
+#include "raycast/raycast.h"
+#include "integrate/tsdf_integration.h"
+#include "map/map_file.h"
+#include "mesh/extract_mesh.h"
+#include "mesh/ply.h"
+#include "sim/analytic_dataset.h"
+
+namespace strata::apps {
+namespace {
+
+double peakHostMemoryMiB() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;  // ru_maxrss is KiB on Linux
+}
+
+std::unique_ptr<Dataset> openInput(const FuseOptions& o) {
+  if (o.dataset.empty() || o.dataset == "analytic") {
+    return std::make_unique<sim::AnalyticDataset>();
+  }
+  return openDataset(o.dataset, o.dataset_options);
+}
+
+}  // namespace
+
+FuseSession::FuseSession(const FuseOptions& options)
+    : options_(options), dataset_(openInput(options)), map_(options.map) {
+  analytic_ = dynamic_cast<const sim::AnalyticDataset*>(dataset_.get());
+  dataset_->intrinsics().validate();
+  const std::size_t limit = options_.frames > 0 ? static_cast<std::size_t>(options_.frames)
+                                                : dataset_->size();
+  for (std::size_t i = 0; i < dataset_->size() && frame_indices_.size() < limit;
+       i += static_cast<std::size_t>(options_.stride)) {
+    frame_indices_.push_back(i);
+  }
+  if (frame_indices_.empty()) throw InputError("dataset '" + dataset_->name() + "' has no frames");
+  if (!dataset_->warnings().empty()) {
+    std::fprintf(stderr, "strata fuse: %s\n", dataset_->warnings().c_str());
+  }
+  if (!options_.reference) {
+    vk::ContextOptions context_options;
+    context_options.device_selector = options_.device;
+    context_ = vk::Context::create(context_options);
+    MapperConfig config;
+    config.map = options_.map;
+    config.esdf = options_.esdf;  // kept up to date after every frame (incrementally)
+    mapper_ = std::make_unique<Mapper>(config, *context_);
+  }
+}
+
+FuseSession::~FuseSession() = default;
+
+void FuseSession::fuseFrame(const RgbdFrame& frame) {
+  if (mapper_) {
+    const FrameStats stats = mapper_->integrate(frame, dataset_->intrinsics()).fusion;
+    totals_.upload_ms += stats.upload_ms;
+    totals_.normals_ms += stats.normals_ms;
+    totals_.allocate_ms += stats.allocate_ms;
+    totals_.integrate_ms += stats.integrate_ms;
+    totals_.wall_ms += stats.wall_ms;
+    totals_.touched_blocks += stats.touched_blocks;
+    if (options_.esdf) updateEsdf();
+  } else {
+    const auto start = std::chrono::steady_clock::now();
+    integrateFrameReference(map_, frame, dataset_->intrinsics());
+    reference_ms_ += std::chrono::duration<double, std::milli>(
+                         std::chrono::steady_clock::now() - start).count();
+  }
+  last_pose_ = frame.T_W_C;
+}
+
+void FuseSession::updateEsdf() {
+  const EsdfUpdateStats stats = mapper_->updateEsdf();
+  esdf_totals_.device_ms += stats.device_ms;
+  esdf_totals_.wall_ms += stats.wall_ms;
+  esdf_totals_.voxels_updated += stats.voxels_updated;
+  esdf_totals_.blocks_updated += stats.blocks_updated;
+}
+
+bool FuseSession::run() {
+  ProgressBar progress("fusing", frame_indices_.size(), !options_.quiet);
+  const auto start = std::chrono::steady_clock::now();
+  for (std::size_t i = 0; i < frame_indices_.size(); ++i) {
+    try {
+      fuseFrame(dataset_->load(frame_indices_[i]));
+    } catch (const Error& e) {
+      progress.finish();
+      failure_ = e.what();
+      std::fprintf(stderr, "strata fuse: stopped at frame %zu of %zu: %s\n", i + 1,
+                   frame_indices_.size(), e.what());
+      std::fprintf(stderr, "strata fuse: keeping the %zu frames fused so far\n", fused_);
+      break;
+    }
+    ++fused_;
+    std::ostringstream detail;
+    if (mapper_) {
+      detail.precision(1);
+      detail << std::fixed
+             << (totals_.normals_ms + totals_.allocate_ms + totals_.integrate_ms) / fused_
+             << " ms/frame on device";
+      if (options_.esdf) detail << " + ESDF " << esdf_totals_.device_ms / fused_ << " ms";
+    }
+    progress.update(fused_, detail.str());
+  }
+  progress.finish();
+  wall_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return failure_.empty();
+}
+
+bool FuseSession::writeOutputs() {
+  if (mapper_) map_ = mapper_->download();
+  if (!options_.mesh_path.empty() || analytic_ != nullptr) mesh_ = extractMesh(map_);
+  if (!options_.mesh_path.empty()) {
+    writePly(options_.mesh_path, mesh_);
+    written_.push_back("mesh " + options_.mesh_path);
+  }
+  if (!options_.map_path.empty()) {
+    saveMap(map_, options_.map_path);  // the host copy just downloaded (Mapper::save would again)
+    written_.push_back("map " + options_.map_path);
+  }
+  if (!options_.render_path.empty() && fused_ > 0) renderView();
+  return options_.esdf_png_path.empty() || writeEsdfSlice();
+}
+
+bool FuseSession::writeEsdfSlice() {
+  EsdfSliceOptions slice;
+  slice.z_m = options_.slice_z_m;
+  slice.max_distance_m = mapper_->config().esdf_config.max_distance_m;
+  try {
+    writeEsdfSlicePng(options_.esdf_png_path, mapper_->esdf(), slice);
+  } catch (const InputError& e) {
+    // NOTE: the fused map is worth more than the picture: keep going, report, exit non-zero.
+    std::fprintf(stderr, "strata fuse: no ESDF slice written: %s\n", e.what());
+    esdf_slice_problem_ = e.what();
+    return false;
+  }
+  written_.push_back("ESDF slice " + options_.esdf_png_path);
+  return true;
+}
+
+std::string FuseSession::esdfSummary() const {
+  if (!options_.esdf || !mapper_ || fused_ == 0) return "";
+  const double n = static_cast<double>(fused_);
+  std::ostringstream s;
+  s.precision(2);
+  s << std::fixed << " ESDF kept up to date incrementally: " << esdf_totals_.device_ms / n
+    << " ms per frame device time (" << esdf_totals_.wall_ms / n << " ms wall), "
+    << std::llround(esdf_totals_.blocks_updated / n) << " blocks ("
+    << std::llround(static_cast<double>(esdf_totals_.voxels_updated) / n)
+    << " voxels) recomputed per frame.";
+  if (!esdf_slice_problem_.empty()) s << " No ESDF slice: " << esdf_slice_problem_ << ".";
+  return s.str();
+}
+
+void FuseSession::renderView() {
+  RaycastImage image;
+  if (mapper_) {
+    image = mapper_->render(dataset_->intrinsics(), last_pose_);
+  } else {
+    image = raycastReference(map_, dataset_->intrinsics(), last_pose_);
+  }
+  writeColorPng(options_.render_path, shadedView(image, last_pose_));
+  written_.push_back("rendering " + options_.render_path);
+}
+
+void FuseSession::printSummary() const {
+  std::size_t observed = 0;
+  for (const auto& [index, block] : map_.blocks()) {
+    for (const TsdfVoxel& voxel : block) observed += voxel.weight > 0.0f ? 1 : 0;
+  }
+  std::ostringstream s;
+  s.precision(2);
+  s << std::fixed << "Fused " << fused_ << " of " << frame_indices_.size() << " frames of '"
+    << dataset_->name() << "' (" << map_.config().describe() << ") into " << map_.blockCount()
+    << " blocks, " << observed << " observed voxels, in " << wall_s_ << " s. ";
+  if (mapper_ && fused_ > 0) {
+    const double n = static_cast<double>(fused_);
+    s << "Per frame on " << context_->deviceName() << ": upload " << totals_.upload_ms / n
+      << " ms, normals " << totals_.normals_ms / n
+      << " ms, allocate " << totals_.allocate_ms / n << " ms, integrate "
+      << totals_.integrate_ms / n << " ms (device time), " << totals_.wall_ms / n
+      << " ms wall; " << totals_.touched_blocks / fused_ << " blocks touched per frame. "
+      << "Peak device memory " << context_->peakAllocatedBytes() / 1048576.0 << " MiB, ";
+  } else if (fused_ > 0) {
+    s << "C++ reference: " << reference_ms_ / static_cast<double>(fused_) << " ms per frame. ";
+  }
+  s << "peak host memory " << peakHostMemoryMiB() << " MiB." << esdfSummary();
+  if (analytic_ != nullptr) {
+    const float voxel_m = map_.config().voxel_size_m;
+    const auto tsdf = eval::evaluateTsdf(map_, analytic_->scene(),
+                                         0.5f * map_.config().truncationDistance());
+    const auto mesh = eval::evaluateMesh(mesh_, analytic_->scene(), 0.5f * voxel_m);
+    s << " Against the exact scene: mean |TSDF - SDF| " << tsdf.mean_abs_error_m / voxel_m
+      << " voxel within half the band; " << mesh.fraction_within * 100.0
+      << " % of " << mesh.vertices << " mesh vertices within half a voxel of the surface.";
+  }
+  for (const std::string& w : written_) s << " Wrote " << w << ".";
+  if (!failure_.empty()) s << " Stopped early: " << failure_;
+  std::printf("%s\n", s.str().c_str());
+}
+
+}  // namespace strata::apps

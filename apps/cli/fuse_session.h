@@ -1,0 +1,61 @@
+#pragma once
+// The work of `strata fuse`, split into steps so each stays small.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cli/fuse_command.h"
+#include "io/dataset.h"
+#include "mapper/mapper.h"
+#include "map/tsdf_map.h"
+#include "mesh/mesh.h"
+#include "vk/vk.h"
+
+namespace strata::sim {
+class AnalyticDataset;
+}
+
+namespace strata::apps {
+
+class FuseSession {
+ public:
+  explicit FuseSession(const FuseOptions& options);
+  ~FuseSession();
+
+  /// Fuses the frames. Returns false when a frame failed part-way: the error is printed and
+  /// everything fused before it is kept (and written by writeOutputs).
+  bool run();
+  /// Downloads the map, writes mesh / map / rendering / ESDF slice as requested. Returns false
+  /// when an output could not be made (the reason is printed and kept for the summary).
+  bool writeOutputs();
+  /// One paragraph: frames, blocks, voxels, ms per frame by kernel (ESDF too), memory, device,
+  /// accuracy.
+  void printSummary() const;
+
+ private:
+  void fuseFrame(const RgbdFrame& frame);
+  void updateEsdf();
+  void renderView();
+  bool writeEsdfSlice();
+  std::string esdfSummary() const;
+
+  FuseOptions options_;
+  std::unique_ptr<Dataset> dataset_;
+  const sim::AnalyticDataset* analytic_ = nullptr;  // set when fusing the built-in scene
+  std::unique_ptr<vk::Context> context_;
+  std::unique_ptr<Mapper> mapper_;    // the device path (none with --reference)
+  EsdfUpdateStats esdf_totals_;       // summed over frames
+  std::string esdf_slice_problem_;    // why the ESDF slice was not written
+  TsdfMap map_;
+  Mesh mesh_;
+  std::vector<std::size_t> frame_indices_;
+  std::size_t fused_ = 0;
+  FrameStats totals_;
+  double reference_ms_ = 0.0;
+  double wall_s_ = 0.0;
+  std::string failure_;
+  std::vector<std::string> written_;
+  Eigen::Isometry3d last_pose_ = Eigen::Isometry3d::Identity();
+};
+
+}  // namespace strata::apps

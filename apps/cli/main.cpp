@@ -1,0 +1,71 @@
+// strata: the command-line entry point. With no subcommand it runs the main job on the built-in
+// default data: the multi-session demo on the shipped single-room world (strata_out/).
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+
+#include "cli/demo_command.h"
+#include "cli/diff_command.h"
+#include "cli/esdf_command.h"
+#include "cli/fuse_command.h"
+#include "cli/mesh_command.h"
+#include "cli/select_command.h"
+#include "cli/sim_command.h"
+#include "core/error.h"
+#include "vk/vk.h"
+
+namespace {
+
+int listDevices() {
+  try {
+    for (const auto& device : strata::vk::Context::listDevices()) {
+      std::printf("%u: %s\n", device.index, device.name.c_str());
+    }
+    return 0;
+  } catch (const strata::Error& e) {
+    std::fprintf(stderr, "strata devices: %s\n", e.what());
+    return 3;
+  }
+}
+
+int runDefault() {
+  std::printf("strata: no command given; running the multi-session demo on the shipped room "
+              "(see `strata --help` for fuse, sim, demo, diff, mesh, esdf, devices)\n");
+  return strata::apps::runDemo(strata::apps::DemoOptions{});
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Strata: dense multi-session mapping on Vulkan compute"};
+  app.require_subcommand(0, 1);
+  strata::apps::FuseOptions fuse_options;
+  CLI::App* fuse = strata::apps::addFuseCommand(app, fuse_options);
+  strata::apps::MeshOptions mesh_options;
+  CLI::App* mesh = strata::apps::addMeshCommand(app, mesh_options);
+  strata::apps::SimOptions sim_options;
+  CLI::App* sim = strata::apps::addSimCommand(app, sim_options);
+  strata::apps::DemoOptions demo_options;
+  CLI::App* demo = strata::apps::addDemoCommand(app, demo_options);
+  strata::apps::DiffOptions diff_options;
+  CLI::App* diff = strata::apps::addDiffCommand(app, diff_options);
+  strata::apps::EsdfOptions esdf_options;
+  CLI::App* esdf = strata::apps::addEsdfCommand(app, esdf_options);
+  strata::apps::SelectOptions select_options;
+  CLI::App* select_cmd = strata::apps::addSelectCommand(app, select_options);
+  CLI::App* devices = app.add_subcommand("devices", "List the Vulkan devices");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  if (fuse->parsed()) return strata::apps::runFuse(fuse_options);
+  if (mesh->parsed()) return strata::apps::runMesh(mesh_options);
+  if (sim->parsed()) return strata::apps::runSim(sim_options);
+  if (demo->parsed()) return strata::apps::runDemo(demo_options);
+  if (diff->parsed()) return strata::apps::runDiff(diff_options);
+  if (esdf->parsed()) return strata::apps::runEsdf(esdf_options);
+  if (select_cmd->parsed()) return strata::apps::runSelect(select_options);
+  if (devices->parsed()) return listDevices();
+  return runDefault();
+}

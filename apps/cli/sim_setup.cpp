@@ -1,0 +1,25 @@
+#include "cli/sim_setup.h"
+
+#include "sim/world/world_paths.h"
+
+namespace strata::apps {
+
+std::shared_ptr<const sim::World> loadWorld(const std::string& path, std::uint64_t seed,
+                                            int sessions) {
+  sim::World::Options options;
+  if (seed != 0) options.seed = seed;
+  if (sessions > 0) options.session_count = sessions;
+  return std::make_shared<const sim::World>(
+      sim::World::load(path.empty() ? sim::defaultWorldPath() : path, options));
+}
+
+sim::SimSessionConfig sessionConfig(double rate_hz, int max_frames, bool noise, bool drift) {
+  sim::SimSessionConfig config;
+  config.frame_rate_hz = rate_hz;
+  config.max_frames = max_frames;
+  config.drift = drift;
+  config.camera.noise.enabled = noise;  // quantisation to the 16-bit format stays on
+  return config;
+}
+
+}  // namespace strata::apps

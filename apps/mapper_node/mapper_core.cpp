@@ -1,0 +1,132 @@
+#include "mapper_node/mapper_core.h"
+
+#include <chrono>
+
+#include "core/error.h"
+#include "lcm/block_mesh_msg.h"
+#include "lcm/convert_change.h"
+#include "lcm/esdf_slice_msg.h"
+#include "lcm/lcm_time.h"
+
+namespace strata::apps {
+namespace {
+
+MeshOptions blockMeshOptions() {
+  MeshOptions options;
+  options.compute_normals = false;  // mesh_block_t carries positions and colours only
+  return options;
+}
+
+const MapperOptions& validated(const MapperOptions& options) {
+  options.validate();
+  return options;
+}
+
+}  // namespace
+
+MapperConfig mapperConfig(const MapperOptions& options) {
+  MapperConfig config;
+  config.map = options.map;
+  if (options.change_detection) {
+    // The session layers change detection compares: constant weights (change_min_weight counts
+    // the frames that saw a voxel) and observed free space, at the mapper's voxel size and range.
+    MapConfig change_map = change::changeMapConfig(options.map.voxel_size_m);
+    change_map.max_depth_m = options.map.max_depth_m;
+    change_map.min_depth_m = options.map.min_depth_m;
+    change_map.truncation_voxels = options.map.truncation_voxels;
+    change_map.max_block_capacity = options.map.max_block_capacity;
+    config.map = change_map;
+    config.change_detection = true;
+    config.change.min_weight = options.change_min_weight;
+    config.change.difference_threshold_m =
+        options.change_threshold_voxels * options.map.voxel_size_m;
+    config.change.merge_close_m = options.map.voxel_size_m;
+  }
+  config.esdf = options.esdf_rate_hz > 0.0;
+  config.keyframe_scoring = options.keyframe_scores;
+  return config;
+}
+
+MapperCore::MapperCore(vk::Context& context, const MapperOptions& options)
+    : options_(validated(options)), mapper_(mapperConfig(options_), context) {}
+
+MapperCore::~MapperCore() = default;
+
+bool MapperCore::fuse(const lcm_io::ReadyFrame& ready, keyframe_score_t* score) {
+  const auto start = std::chrono::steady_clock::now();
+  const bool scored = options_.keyframe_scores && score != nullptr;
+  // Before fusing: the score says what the frame adds to the map as it was.
+  if (scored) {
+    const KeyframeDecision decision = mapper_.scoreKeyframe(ready.frame, ready.intrinsics);
+    *score = keyframe_score_t{};
+    score->utime = lcm_io::nowUtime();
+    score->frame_utime = ready.utime;
+    score->coverage = static_cast<float>(decision.score.coverage);
+    score->change = static_cast<float>(decision.score.color_change);
+    score->selected = decision.keyframe;
+    score->reason = decision.reason;
+  }
+  if (!mapper_.sessionOpen()) session_ = mapper_.beginSession();
+  mapper_.integrate(ready.frame, ready.intrinsics);
+  ++frames_fused_;
+  last_frame_utime_ = ready.utime;
+  last_fuse_ms_ =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  total_fuse_ms_ += last_fuse_ms_;
+  return scored;
+}
+
+bool MapperCore::meshUpdate(bool full, std::int64_t utime, mesh_update_t* update) {
+  if (full) mapper_.resetMeshStream();
+  const std::vector<BlockMesh> blocks = mapper_.meshChangedBlocks(blockMeshOptions());
+  if (!full && blocks.empty()) return false;
+  *update = mesh_update_t{};
+  update->utime = utime;
+  update->last_frame_utime = last_frame_utime_;
+  update->sequence = mesh_sequence_++;
+  update->full = full;
+  update->voxel_size_m = mapper_.config().map.voxel_size_m;
+  for (const BlockMesh& block : blocks) update->blocks.push_back(lcm_io::toMessage(block));
+  update->num_blocks = static_cast<std::int32_t>(update->blocks.size());
+  return true;
+}
+
+bool MapperCore::esdfSlice(std::int64_t utime, esdf_slice_t* slice) {
+  if (!mapper_.config().esdf || frames_fused_ == 0) return false;
+  mapper_.updateEsdf();
+  *slice = lcm_io::makeEsdfSlice(mapper_.esdf(), options_.esdf_slice_z_m, utime);
+  slice->last_frame_utime = last_frame_utime_;
+  return true;
+}
+
+std::vector<change_event_t> MapperCore::startSession(std::int64_t utime) {
+  std::vector<change_event_t> events;
+  if (mapper_.sessionOpen()) events = endSession(utime);
+  session_ = mapper_.beginSession();
+  return events;
+}
+
+std::vector<change_event_t> MapperCore::stopSession(std::int64_t utime) {
+  if (!mapper_.sessionOpen()) throw InputError("no session is open");
+  return endSession(utime);
+}
+
+std::vector<change_event_t> MapperCore::endSession(std::int64_t utime) {
+  const SessionResult result = mapper_.endSession();
+  std::vector<change_event_t> events;
+  if (!mapper_.config().change_detection) return events;
+  for (const change::DiscoveredObject& object : result.objects) {
+    events.push_back(
+        lcm_io::encodeChangeEvent(object, static_cast<int>(result.objects.size()), utime));
+  }
+  return events;
+}
+
+TsdfMap MapperCore::downloadMap() { return mapper_.download(); }
+
+void MapperCore::saveMap(const std::string& path) {
+  if (path.empty()) throw InputError("no map path: pass one with the command or --map");
+  mapper_.save(path);
+}
+
+}  // namespace strata::apps

@@ -1,0 +1,77 @@
+#pragma once
+// The mapper's work without LCM, on strata::Mapper: fuse a frame (scored first), the mesh of
+// changed blocks, an ESDF slice, sessions and their change events, saving the map — each turned
+// into or out of its message. strata-mapper's node calls it from its one worker thread; tests call
+// it directly. With change detection on, every frame is fused once, into the session's layer.
+// Thread safety: not thread safe.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "mapper_node/mapper_options.h"
+#include "lcm/frame_assembler.h"
+#include "mapper/mapper.h"
+#include "strata/change_event_t.hpp"
+#include "strata/esdf_slice_t.hpp"
+#include "strata/keyframe_score_t.hpp"
+#include "strata/mesh_update_t.hpp"
+#include "vk/vk.h"
+
+namespace strata::apps {
+
+/// The Mapper configuration strata-mapper's options ask for.
+MapperConfig mapperConfig(const MapperOptions& options);
+
+class MapperCore {
+ public:
+  /// `context` must outlive the core. Throws InputError for invalid options.
+  MapperCore(vk::Context& context, const MapperOptions& options);
+  ~MapperCore();
+
+  /// Fuses one frame (opening a session when none is open). Throws InputError for a bad frame
+  /// and DeviceError when the device is full; the map is then as it was before the frame.
+  /// `score` (optional): the frame's keyframe score against the map before it; returns whether
+  /// one was made (keyframe scoring on).
+  bool fuse(const lcm_io::ReadyFrame& frame, keyframe_score_t* score = nullptr);
+
+  /// The blocks changed since the last update (full: every block with a surface); false when
+  /// nothing changed (no message then). Downloads the changed blocks (device -> host).
+  bool meshUpdate(bool full, std::int64_t utime, mesh_update_t* update);
+  /// Brings the ESDF up to date and cuts the slice; false without ESDF or frames.
+  bool esdfSlice(std::int64_t utime, esdf_slice_t* slice);
+
+  /// Opens a new session (ending an open one first: its events are returned).
+  std::vector<change_event_t> startSession(std::int64_t utime);
+  /// Ends the open session; its discovered objects as events. Throws InputError when none is open.
+  std::vector<change_event_t> stopSession(std::int64_t utime);
+
+  /// Downloads the map and writes it atomically (map_file.h).
+  void saveMap(const std::string& path);
+  /// Host copy of the live map (device -> host).
+  TsdfMap downloadMap();
+
+  std::int64_t framesFused() const { return frames_fused_; }
+  std::int64_t lastFrameUtime() const { return last_frame_utime_; }
+  double lastFuseMs() const { return last_fuse_ms_; }
+  double meanFuseMs() const { return frames_fused_ ? total_fuse_ms_ / frames_fused_ : 0.0; }
+  std::uint32_t blocks() const { return mapper_.blockCount(); }
+  int session() const { return session_; }
+  bool sessionActive() const { return mapper_.sessionOpen(); }
+  const MapConfig& mapConfig() const { return mapper_.config().map; }
+  Mapper& mapper() { return mapper_; }
+
+ private:
+  std::vector<change_event_t> endSession(std::int64_t utime);
+
+  MapperOptions options_;
+  Mapper mapper_;
+  std::int64_t mesh_sequence_ = 0;
+  std::int64_t frames_fused_ = 0;
+  std::int64_t last_frame_utime_ = 0;
+  double last_fuse_ms_ = 0.0;
+  double total_fuse_ms_ = 0.0;
+  int session_ = -1;
+};
+
+}  // namespace strata::apps

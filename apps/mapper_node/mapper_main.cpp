@@ -1,0 +1,83 @@
+// strata-mapper: the LCM mapping process. Subscribes frames, poses, camera infos and commands;
+// fuses on the device; publishes mesh updates, ESDF slices, map stats and change events; saves
+// the map on command and on SIGINT/SIGTERM.
+#include <CLI/CLI.hpp>
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <memory>
+
+#include "mapper_node/mapper_core.h"
+#include "mapper_node/mapper_node.h"
+#include "core/error.h"
+#include "vk/vk.h"
+
+namespace {
+
+std::atomic<bool> g_stop{false};
+
+extern "C" void onStopSignal(int) { g_stop = true; }
+
+void installStopHandlers() {
+  struct sigaction action {};
+  action.sa_handler = onStopSignal;
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+}
+
+int runMapper(const strata::apps::MapperOptions& options) {
+  using namespace strata;
+  options.validate();
+  vk::ContextOptions context_options;
+  context_options.device_selector = options.device;
+  auto context = vk::Context::create(context_options);
+  apps::MapperCore core(*context, options);
+  lcm::LCM input(options.url);
+  std::unique_ptr<lcm::LCM> separate_output;
+  if (!options.output_url.empty()) separate_output = std::make_unique<lcm::LCM>(options.output_url);
+  apps::MapperNode node(input, separate_output ? *separate_output : input, core, options);
+  std::fprintf(stderr,
+               "strata-mapper: listening on %s (frames %s, poses %s, camera info %s, commands "
+               "%s); %.3f m voxels on %s; Ctrl-C saves the map to %s\n",
+               options.url.c_str(), options.channels.rgbd.c_str(), options.channels.pose.c_str(),
+               options.channels.camera_info.c_str(), options.channels.command.c_str(),
+               options.map.voxel_size_m, context->deviceName().c_str(),
+               options.map_path.empty() ? "(nowhere: --map '')" : options.map_path.c_str());
+  const bool saved = node.run(g_stop);
+  const apps::MapperCounters c = node.counters();
+  std::printf(
+      "strata-mapper: received %lld frames, fused %lld (%.1f ms each on average), dropped %lld "
+      "behind the fusion queue and %lld without a pose, rejected %lld; %lld bad messages; %u "
+      "blocks.%s\n",
+      static_cast<long long>(c.frames_received), static_cast<long long>(core.framesFused()),
+      core.meanFuseMs(), static_cast<long long>(c.frames_dropped_backlog),
+      static_cast<long long>(c.frames_dropped_no_pose), static_cast<long long>(c.frames_rejected),
+      static_cast<long long>(c.messages_bad), core.blocks(),
+      saved ? "" : " The map could NOT be saved (see above).");
+  return saved ? 0 : 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "strata-mapper: fuse RGB-D frames received over LCM, publish meshes, ESDF slices, "
+      "stats and change events"};
+  strata::apps::MapperOptions options;
+  strata::apps::addMapperOptions(app, options);
+  CLI11_PARSE(app, argc, argv);
+  installStopHandlers();
+  try {
+    return runMapper(options);
+  } catch (const strata::InputError& e) {
+    std::fprintf(stderr, "strata-mapper: input error: %s\n", e.what());
+    return 2;
+  } catch (const strata::DeviceError& e) {
+    std::fprintf(stderr, "strata-mapper: device error: %s\n", e.what());
+    return 3;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "strata-mapper: error: %s\n", e.what());
+    return 1;
+  }
+}

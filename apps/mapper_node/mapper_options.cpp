@@ -1,0 +1,75 @@
+#include "mapper_node/mapper_options.h"
+
+#include <CLI/CLI.hpp>
+#include <cmath>
+
+#include "core/error.h"
+
+namespace strata::apps {
+
+MapConfig MapperOptions::defaultMapperMapConfig() {
+  MapConfig config;
+  config.voxel_size_m = 0.05f;
+  // NOTE: planners read the ESDF in free space, which only allocated blocks carry.
+  config.allocate_free_space = true;
+  return config;
+}
+
+void MapperOptions::validate() const {
+  map.validate();
+  if (!std::isfinite(mesh_rate_hz)) throw InputError("--mesh-rate must be finite");
+  if (!std::isfinite(esdf_rate_hz) || esdf_rate_hz < 0.0) {
+    throw InputError("--esdf-rate must be >= 0 (0: no ESDF)");
+  }
+  if (!std::isfinite(stats_rate_hz) || stats_rate_hz <= 0.0) {
+    throw InputError("--stats-rate must be > 0");
+  }
+  if (queue_capacity == 0) throw InputError("--queue must be at least 1 frame");
+  if (!std::isfinite(esdf_slice_z_m)) throw InputError("--slice-z must be finite");
+}
+
+void addMapperOptions(CLI::App& app, MapperOptions& o) {
+  app.add_option("--url", o.url, "LCM URL to listen on (udpm with ttl=0 stays on this host)")
+      ->capture_default_str();
+  app.add_option("--output-url", o.output_url, "LCM URL to publish on (default: --url)");
+  app.add_option("--map", o.map_path,
+                 "Map file written on SAVE_MAP without a path and on SIGINT/SIGTERM ('' = none)")
+      ->capture_default_str();
+  app.add_option("--voxel-size", o.map.voxel_size_m, "Voxel edge, metres")->capture_default_str();
+  app.add_option("--max-depth", o.map.max_depth_m, "Ignore depth beyond, metres")
+      ->capture_default_str();
+  app.add_flag_callback(
+      "--no-free-space", [&o] { o.map.allocate_free_space = false; },
+      "Allocate only the surfaces' band (the ESDF then ends there)");
+  app.add_option("--mesh-rate", o.mesh_rate_hz, "Mesh updates per second (<= 0: after every frame)")
+      ->capture_default_str();
+  app.add_option("--esdf-rate", o.esdf_rate_hz, "ESDF slices per second (0: no ESDF)")
+      ->capture_default_str();
+  app.add_option("--slice-z", o.esdf_slice_z_m, "Height of the ESDF slice, metres")
+      ->capture_default_str();
+  app.add_option("--stats-rate", o.stats_rate_hz, "Least map_stats_t messages per second")
+      ->capture_default_str();
+  app.add_option("--queue", o.queue_capacity, "Frames waiting to be fused (oldest dropped)")
+      ->capture_default_str();
+  app.add_flag_callback(
+      "--no-change", [&o] { o.change_detection = false; },
+      "No change detection (no change events; about half the device work)");
+  app.add_option("--change-threshold", o.change_threshold_voxels,
+                 "Change detection: distance difference that counts as change, voxels")
+      ->capture_default_str();
+  app.add_option("--change-min-weight", o.change_min_weight,
+                 "Change detection: frames that must see a voxel before it counts as observed")
+      ->capture_default_str();
+  app.add_flag_callback(
+      "--no-keyframe-scores", [&o] { o.keyframe_scores = false; },
+      "Do not score frames as keyframes (no keyframe_score_t)");
+  app.add_option("--device", o.device, "Vulkan device index or name substring");
+  app.add_option("--rgbd-channel", o.channels.rgbd)->capture_default_str();
+  app.add_option("--camera-info-channel", o.channels.camera_info)->capture_default_str();
+  app.add_option("--pose-channel", o.channels.pose)->capture_default_str();
+  app.add_option("--command-channel", o.channels.command)->capture_default_str();
+  app.add_option("--mesh-channel", o.channels.mesh)->capture_default_str();
+  app.add_flag("--quiet", o.quiet, "Log only problems");
+}
+
+}  // namespace strata::apps

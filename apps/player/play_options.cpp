@@ -1,0 +1,64 @@
+#include "player/play_options.h"
+
+#include <CLI/CLI.hpp>
+#include <cmath>
+
+#include "core/error.h"
+
+namespace strata::apps {
+
+void PlayOptions::validate() const {
+  if (dataset.empty()) throw InputError("no dataset: pass a TUM folder or sim:WORLD[:SESSION]");
+  if (!std::isfinite(rate) || rate < 0.0) throw InputError("--rate must be >= 0 (0: flow control)");
+  if (window < 1) throw InputError("--window must be at least 1 frame");
+  if (frames < 0 || stride < 1 || sim_frames < 0) {
+    throw InputError("--frames and --sim-frames must be >= 0, --stride >= 1");
+  }
+  if (encoding.depth != "depth16" && encoding.depth != "depth32f") {
+    throw InputError("--depth-encoding must be depth16 or depth32f");
+  }
+  if (!(mapper_timeout_s > 0.0)) throw InputError("--mapper-timeout must be > 0");
+}
+
+void addPlayOptions(CLI::App& app, PlayOptions& o) {
+  app.add_option("dataset", o.dataset, "TUM RGB-D folder, or sim:WORLD[:SESSION] (e.g. sim:room:1)")
+      ->required();
+  app.add_option("--url", o.url, "LCM URL (udpm with ttl=0 stays on this host)")
+      ->capture_default_str();
+  app.add_option("--rate", o.rate,
+                 "Speed relative to the recording; 0: as fast as the mapper fuses (flow control)")
+      ->capture_default_str();
+  app.add_option("--window", o.window, "Flow control: frames sent but not yet fused")
+      ->capture_default_str();
+  app.add_option("--frames", o.frames, "Send at most N frames (0: all)");
+  app.add_option("--stride", o.stride, "Send every N-th frame")->capture_default_str();
+  app.add_option("--sim-frames", o.sim_frames,
+                 "Synthetic sessions: frames along the trajectory (0: all at 30 Hz)")
+      ->capture_default_str();
+  app.add_flag_callback(
+      "--no-noise", [&o] { o.sim_noise = false; }, "Synthetic sessions: exact depth");
+  app.add_flag("--separate-poses", o.separate_poses,
+               "Send poses on the pose channel (the mapper interpolates) instead of in frames");
+  app.add_flag("--imu", o.imu, "Synthetic sessions: also send IMU samples");
+  app.add_option("--depth-encoding", o.encoding.depth, "depth16 (compact) or depth32f (exact)")
+      ->capture_default_str();
+  app.add_flag_callback(
+      "--keep-stamps", [&o] { o.restamp = false; },
+      "Keep the recording's time stamps (default: stamp from now on)");
+  app.add_flag_callback(
+      "--no-end-session", [&o] { o.end_session = false; },
+      "Do not end the mapper's session after the last frame");
+  app.add_option("--save", o.save_path,
+                 "After the last frame, ask the mapper to save its map here");
+  app.add_option("--mapper-timeout", o.mapper_timeout_s,
+                 "Seconds to wait for the mapper's stats and replies")
+      ->capture_default_str();
+  app.add_option("--camera-id", o.camera_id)->capture_default_str();
+  app.add_option("--rgbd-channel", o.rgbd_channel)->capture_default_str();
+  app.add_option("--pose-channel", o.pose_channel)->capture_default_str();
+  app.add_option("--command-channel", o.command_channel)->capture_default_str();
+  app.add_option("--stats-channel", o.stats_channel)->capture_default_str();
+  app.add_flag("--quiet", o.quiet, "No progress bar");
+}
+
+}  // namespace strata::apps

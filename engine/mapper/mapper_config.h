@@ -1,0 +1,48 @@
+#pragma once
+// The one configuration of a Mapper: the map, and which capabilities run beside fusion.
+// validate() is called by the Mapper's constructor and throws InputError naming the field.
+#include <string>
+
+#include "change/change_config.h"
+#include "change/objects.h"
+#include "map/esdf_layer.h"
+#include "map/map_config.h"
+#include "select/keyframe_scorer.h"
+#include "select/keyframe_selection.h"
+
+namespace strata {
+
+struct MapperConfig {
+  /// Voxel size, truncation, weights, depth range, capacities (map/map_config.h). With change
+  /// detection on it is the map of every session layer and of the static estimate.
+  MapConfig map;
+
+  /// Keep an ESDF beside the TSDF: updateEsdf() and the distance / collision queries. Planners
+  /// want map.allocate_free_space too (the ESDF covers only allocated blocks).
+  bool esdf = false;
+  /// Range, site threshold, minimum weight of the ESDF (map/esdf_layer.h).
+  EsdfConfig esdf_config;
+
+  /// Multi-session change detection: each session is fused into a TSDF layer of its own that
+  /// shares the block index with the static estimate S; endSession() merges it into S and
+  /// discovers the objects that moved. Off: one TSDF layer, sessions only count.
+  bool change_detection = false;
+  /// Difference threshold, erosion, dilation, minimum weight (change/change_types.h).
+  change::ChangeConfig change;
+  /// How a session's dynamic voxels become objects (change/objects.h).
+  change::ObjectConfig objects;
+
+  /// scoreKeyframe(): raycast-reprojection metrics of a frame against the map before it.
+  bool keyframe_scoring = false;
+  /// Sample grid, tolerances (select/keyframe_scorer.h).
+  selection::ScorerConfig scorer;
+  /// The decision of scoreKeyframe(): a frame is a keyframe when a metric passes its threshold.
+  selection::Thresholds keyframe_thresholds;
+
+  /// Throws InputError naming the bad field (of this struct or of a nested config).
+  void validate() const;
+  /// One line for summaries: voxel size, truncation, and the capabilities on.
+  std::string describe() const;
+};
+
+}  // namespace strata

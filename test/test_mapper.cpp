@@ -1,0 +1,222 @@
+// The Mapper end to end: fuse, ESDF query, mesh, save, load (identical bytes) on the analytic
+// scene (against its exact geometry and the C++ reference fusion) and on the real redkitchen
+// frames; a session round trip with change detection (one fusion pass, the same result as the
+// ChangeDetector driven directly); bad input.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include "change/change_detector.h"
+#include "change_pipeline_helpers.h"
+#include "core/error.h"
+#include "eval/accuracy.h"
+#include "fusion_fixture.h"
+#include "io/dataset.h"
+#include "map/map_file.h"
+#include "map_compare.h"
+#include "mapper/mapper.h"
+#include "mesh/extract_mesh.h"
+#include "sim/analytic_dataset.h"
+#include "test_utils.h"
+
+namespace strata {
+namespace {
+
+std::vector<std::uint8_t> fileBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+std::string tempPath(const std::string& name) {
+  return (std::filesystem::temp_directory_path() / ("strata_test_mapper_" + name)).string();
+}
+
+/// save -> load -> save gives the same bytes, and the loaded mapper meshes the same surface.
+void expectRoundTrip(Mapper& mapper, const MapperConfig& config, const std::string& name) {
+  const std::string first = tempPath(name + "_1.strata");
+  const std::string second = tempPath(name + "_2.strata");
+  mapper.save(first);
+  const std::unique_ptr<Mapper> loaded = Mapper::load(first, test::sharedContext(), config);
+  loaded->save(second);
+  const std::vector<std::uint8_t> a = fileBytes(first);
+  EXPECT_FALSE(a.empty());
+  EXPECT_EQ(a, fileBytes(second)) << "save -> load -> save must give identical bytes";
+  EXPECT_EQ(loaded->mesh().triangles.size(), mapper.mesh().triangles.size());
+  std::remove(first.c_str());
+  std::remove(second.c_str());
+}
+
+TEST(Mapper, AnalyticSceneFusesLikeTheReferenceAndMatchesTheExactScene) {
+  const sim::AnalyticDataset data;
+  MapperConfig config;
+  config.map.voxel_size_m = 0.04f;
+  config.map.allocate_free_space = true;
+  config.esdf = true;
+  Mapper mapper(config, test::sharedContext());
+  const std::size_t frames = 8;
+  for (std::size_t i = 0; i < frames; ++i) {
+    const IntegrateStats stats = mapper.integrate(data.load(i), data.intrinsics());
+    EXPECT_GT(stats.fusion.touched_blocks, 0u);
+    EXPECT_EQ(stats.blocks, mapper.blockCount());
+  }
+  EXPECT_EQ(mapper.framesIntegrated(), frames);
+
+  // Device fusion through the facade equals the C++ reference of the same frames.
+  const TsdfMap map = mapper.download();
+  const TsdfMap reference = test::fuseReference(data, config.map, frames);
+  const test::MapDifference diff = test::compareMaps(map, reference, 1e-4f, 1e-4f);
+  EXPECT_EQ(diff.blocks_only_in_a + diff.blocks_only_in_b, 0u);
+  EXPECT_LT(diff.distanceMismatchShare(), 1e-3);
+
+  // ... and both agree with the exact scene.
+  const Mesh mesh = mapper.mesh();
+  ASSERT_FALSE(mesh.empty());
+  const auto accuracy = eval::evaluateMesh(mesh, data.scene(), 0.5f * config.map.voxel_size_m);
+  EXPECT_GT(accuracy.fraction_within, 0.95);
+
+  // ESDF queries: the exact signed distance of the scene within a voxel where known.
+  const EsdfUpdateStats esdf = mapper.updateEsdf();
+  EXPECT_TRUE(esdf.full) << "the first update is a full one";
+  std::size_t known = 0, close = 0;
+  for (const Eigen::Vector3f& v : mesh.vertices) {
+    const Eigen::Vector3f n = Eigen::Vector3f::UnitZ();
+    const Eigen::Vector3f p = v + 0.2f * n;  // 20 cm above a surface point
+    const EsdfSample s = mapper.distance(p);
+    if (s.status != EsdfStatus::kKnown) continue;
+    ++known;
+    const double truth = data.scene().signedDistance(Eigen::Vector3d(p.cast<double>()));
+    close += std::abs(s.distance_m - truth) <= config.map.voxel_size_m ? 1 : 0;
+    if (known == 500) break;
+  }
+  ASSERT_GT(known, 100u);
+  EXPECT_GT(static_cast<double>(close) / known, 0.9);
+  // Collision checks: a point on the surface is not free; a second update is incremental.
+  EXPECT_FALSE(mapper.isSphereFree(mesh.vertices.front(), 0.05f));
+  mapper.integrate(data.load(frames), data.intrinsics());
+  EXPECT_FALSE(mapper.updateEsdf().full);
+
+  expectRoundTrip(mapper, config, "analytic");
+}
+
+TEST(Mapper, StreamsChangedBlocksWhoseUnionIsTheMesh) {
+  const sim::AnalyticDataset data;
+  MapperConfig config;
+  config.map.voxel_size_m = 0.05f;
+  Mapper mapper(config, test::sharedContext());
+  mapper.integrate(data.load(0), data.intrinsics());
+  MeshOptions options;
+  options.compute_normals = false;
+  std::size_t first = 0;
+  for (const BlockMesh& b : mapper.meshChangedBlocks(options)) first += b.mesh.triangles.size();
+  EXPECT_EQ(first, mapper.mesh(options).triangles.size()) << "the first call sends everything";
+  EXPECT_TRUE(mapper.meshChangedBlocks(options).empty()) << "nothing fused since";
+  mapper.integrate(data.load(3), data.intrinsics());
+  EXPECT_FALSE(mapper.meshChangedBlocks(options).empty());
+}
+
+TEST(Mapper, RealKitchenFramesFuseQueryMeshAndRoundTrip) {
+  STRATA_REQUIRE_DATA("redkitchen", folder);
+  const std::unique_ptr<Dataset> data = openDataset(folder, {});
+  MapperConfig config;
+  config.map.voxel_size_m = 0.04f;
+  config.esdf = true;
+  config.keyframe_scoring = true;
+  Mapper mapper(config, test::sharedContext());
+  for (std::size_t i = 0; i < 30; i += 3) {
+    const RgbdFrame frame = data->load(i);
+    const KeyframeDecision decision = mapper.scoreKeyframe(frame, data->intrinsics());
+    if (i == 0) EXPECT_TRUE(decision.keyframe) << "an empty map explains nothing";
+    mapper.integrate(frame, data->intrinsics());
+  }
+  // The next frame of the same view: the map covers most of it.
+  const KeyframeDecision next = mapper.scoreKeyframe(data->load(31), data->intrinsics());
+  EXPECT_GT(next.score.coverage, 0.5);
+
+  const Mesh mesh = mapper.mesh();
+  EXPECT_GT(mesh.triangles.size(), 10000u);
+  mapper.updateEsdf();
+  // Surface vertices are within a voxel or two of an obstacle.
+  std::size_t near = 0, known = 0;
+  for (std::size_t i = 0; i < mesh.vertices.size(); i += 97) {
+    const EsdfSample s = mapper.distance(mesh.vertices[i]);
+    if (s.status != EsdfStatus::kKnown) continue;
+    ++known;
+    near += std::abs(s.distance_m) <= 2.0f * config.map.voxel_size_m ? 1 : 0;
+  }
+  ASSERT_GT(known, 50u);
+  EXPECT_GT(static_cast<double>(near) / known, 0.9);
+  // A rendering from the last pose hits the map over most of the image.
+  const RaycastImage image = mapper.render(data->intrinsics(), data->load(27).T_W_C);
+  std::size_t hits = 0;
+  for (std::uint8_t h : image.hit) hits += h;
+  EXPECT_GT(static_cast<double>(hits) / image.hit.size(), 0.5);
+
+  expectRoundTrip(mapper, config, "kitchen");
+}
+
+TEST(Mapper, SessionRoundTripFusesOnceAndFindsWhatTheDetectorFinds) {
+  sim::Box box;
+  box.centre_W = Eigen::Vector3d(-1.0, -0.3, 0.15);
+  box.half_extents_m = Eigen::Vector3d(0.15, 0.15, 0.15);
+  const sim::AnalyticDataset before = test::analyticSession({}, 6);
+  const sim::AnalyticDataset after = test::analyticSession({box}, 6);
+  const float voxel_m = 0.04f;
+
+  MapperConfig config;
+  config.map = test::testMapConfig(voxel_m, true);
+  config.change_detection = true;
+  config.change = test::testChangeConfig(voxel_m);
+  Mapper mapper(config, test::sharedContext());
+  EXPECT_EQ(mapper.beginSession(), 0);
+  for (std::size_t i = 0; i < before.size(); ++i) mapper.integrate(before.load(i), before.intrinsics());
+  EXPECT_EQ(mapper.liveLayer(), 1) << "session 0 fuses into its own layer";
+  const SessionResult first = mapper.endSession();
+  EXPECT_EQ(first.frames, before.size());
+  EXPECT_EQ(mapper.beginSession(), 1);
+  for (std::size_t i = 0; i < after.size(); ++i) mapper.integrate(after.load(i), after.intrinsics());
+  const TsdfMap session_layer = mapper.download();
+  const SessionResult second = mapper.endSession();
+
+  // The same sessions through the ChangeDetector directly.
+  change::ChangeDetector detector(test::sharedContext(), config.map, config.change);
+  for (const sim::AnalyticDataset* data : {&before, &after}) {
+    const int s = detector.beginSession();
+    test::fuseSession(detector, s, *data, data->size());
+    detector.endSession(s);
+  }
+  EXPECT_EQ(test::compareValues(session_layer, detector.sessionMap(1), 0.0f, 1e-6f).over_tolerance,
+            0u) << "one fusion pass into the session layer, as the detector's own";
+  EXPECT_EQ(test::compareValues(mapper.staticMap(), detector.staticMap(), 0.0f, 1e-6f)
+                .over_tolerance, 0u);
+  const auto direct = change::sessionObjects(detector, 1, config.objects);
+  ASSERT_EQ(second.objects.size(), direct.size());
+  ASSERT_GE(second.objects.size(), 1u) << "the box that appeared";
+  const Eigen::AlignedBox3f truth((box.centre_W - box.half_extents_m).cast<float>(),
+                                  (box.centre_W + box.half_extents_m).cast<float>());
+  EXPECT_TRUE(truth.contains(second.objects.front().centroid));
+  EXPECT_TRUE(first.objects.empty()) << "the first session has nothing to differ from";
+}
+
+TEST(Mapper, BadInputIsRefusedBeforeAnythingChanges) {
+  MapperConfig bad;
+  bad.map.voxel_size_m = -1.0f;
+  EXPECT_THROW(Mapper(bad, test::sharedContext()), InputError);
+  MapperConfig config;
+  config.map.voxel_size_m = 0.05f;
+  Mapper mapper(config, test::sharedContext());
+  const sim::AnalyticDataset data;
+  EXPECT_THROW(mapper.updateEsdf(), InputError) << "ESDF off";
+  EXPECT_THROW(mapper.scoreKeyframe(data.load(0), data.intrinsics()), InputError) << "scoring off";
+  EXPECT_THROW(mapper.endSession(), InputError) << "no session open";
+  Eigen::Isometry3d nan_pose = Eigen::Isometry3d::Identity();
+  nan_pose.translation().x() = std::nan("");
+  EXPECT_THROW(mapper.integrate(data.load(0), data.intrinsics(), nan_pose), InputError);
+  EXPECT_EQ(mapper.blockCount(), 0u);
+  EXPECT_THROW(Mapper::load(tempPath("missing.strata"), test::sharedContext()), Error);
+}
+
+}  // namespace
+}  // namespace strata
