@@ -20,7 +20,7 @@ Json notes() {
       .push(
           "the reference runs on the device's own session maps (ChangeDetector::addSessionMap), "
           "so both compute the same labels; label_agreement is the share of voxels with the same "
-          "label where either is known (issue 5: >= 0.999)")
+          "label where either is known (target: >= 0.999)")
       .push(
           "a session update: neighbour table, difference, erosion, dilation (D), static update "
           "(S), and the session's dynamic part (difference against the new S, erosion, "
@@ -60,7 +60,7 @@ DiffRunSettings makeSettings(const DiffBenchOptions& o) {
   s.map.voxel_size_m = o.voxel_size_m;
   s.map.allocate_free_space = o.free_space;
   s.map.validate();
-  s.change.validate(o.voxel_size_m);  // defaults: issue 5's (5 cm threshold at 2 cm voxels)
+  s.change.validate(o.voxel_size_m);  // defaults: the method's (5 cm threshold at 2 cm voxels)
   if (o.frames < 0 || o.sessions < 0) throw InputError("--frames and --sessions must be >= 0");
   s.world = std::make_shared<const sim::World>(sim::World::load(sim::findWorld(o.world)));
   s.sessions = o.sessions > 0 ? o.sessions : s.world->sessionCount();

@@ -1,5 +1,5 @@
 #pragma once
-// `strata-bench diff`: multi-session change detection (issue 5) on a simulated world's sessions:
+// `strata-bench diff`: multi-session change detection on a simulated world's sessions:
 // device time per session update and per stage (difference, erosion, dilation, static update,
 // the session's dynamic part) and per voxel, from timestamp queries, next to the C++ reference
 // on the same session maps; device and reference labels compared (a self-check).

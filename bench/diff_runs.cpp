@@ -8,7 +8,7 @@
 namespace strata::bench {
 namespace {
 
-constexpr double kMinLabelAgreement = 0.999;  // issue 5: device and reference labels
+constexpr double kMinLabelAgreement = 0.999;  // target: device and reference labels
 
 /// Fuses one simulated session into `detector`; returns the fusion device time.
 double fuseSession(change::ChangeDetector& detector, int session, const Dataset& data,

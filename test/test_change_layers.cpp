@@ -1,4 +1,4 @@
-// Layers of the device map (issue 5 step 1): session layers share the block index, layer 0 stays
+// Layers of the device map (step 1): session layers share the block index, layer 0 stays
 // the default for fusion and the ESDF, layers by device address compute what bindings compute.
 #include <gtest/gtest.h>
 

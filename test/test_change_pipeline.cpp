@@ -1,4 +1,4 @@
-// Change-detection pipeline (issue 5 steps 2-5): device against the C++ reference on a simulated
+// Change-detection pipeline (steps 2-5): device against the C++ reference on a simulated
 // room and for every kernel size; with noise-free aligned sessions S is the voxel-wise max;
 // partial overlap; an uncovered floor entering S; misuse of the API. Layers: test_change_layers.
 #include <gtest/gtest.h>
@@ -20,7 +20,7 @@ using change::ChangeDetector;
 using change::LabelMap;
 using change::VoxelLabel;
 
-constexpr double kMinLabelAgreement = 0.999;  // issue 5: device and reference labels
+constexpr double kMinLabelAgreement = 0.999;  // target: device and reference labels
 
 /// Device labels, dynamic parts and S against the reference fed with the device's session maps.
 void expectDeviceMatchesReference(ChangeDetector& device, ChangeDetector& reference, int session) {

@@ -19,7 +19,7 @@
 namespace strata {
 namespace {
 
-/// Issue 4's tolerances: share of compared voxels off by more than one voxel, mean error (voxels).
+/// The ESDF's tolerances: share of compared voxels off by more than one voxel, mean error (voxels).
 constexpr double kMaxShareOverVoxel = 0.002;
 constexpr double kMaxMeanErrorVoxels = 0.1;
 

@@ -1,4 +1,4 @@
-// MapHistory (issue 6 ground truth): the surface a map last observed along a ray comes from the
+// MapHistory (ground truth): the surface a map last observed along a ray comes from the
 // latest session whose fused keyframes saw it, not simply the previous session's world.
 #include <gtest/gtest.h>
 

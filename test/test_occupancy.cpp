@@ -1,4 +1,4 @@
-// Occupancy layer (issue 6): the log-odds rule (Hornung et al. 2013, Eq. 2-3) on the reference and
+// Occupancy layer: the log-odds rule (Hornung et al. 2013, Eq. 2-3) on the reference and
 // the device, and the device against the reference voxel for voxel on the analytic scene and a
 // simulated room session.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Occupancy layer (issue 6) against the TSDF and the true scene: surface position and
+// Occupancy layer against the TSDF and the true scene: surface position and
 // completeness on the analytic scene (exact depth) and a simulated room session (sensor noise).
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Occupancy layer (issue 6): OccupancyConfig's defaults (OctoMap's published ones) and its errors.
+// Occupancy layer: OccupancyConfig's defaults (OctoMap's published ones) and its errors.
 #include <gtest/gtest.h>
 
 #include <cmath>

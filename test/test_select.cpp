@@ -1,4 +1,4 @@
-// Keyframe selection (issue 6), the parts: the sparse raycast on the device against its reference
+// Keyframe selection, the parts: the sparse raycast on the device against its reference
 // and the full-image raycast, the metrics on constructed images, smoothing / selection /
 // dilation / automatic thresholds, and bad input. The room experiment is test_select_room.cpp.
 #include <gtest/gtest.h>

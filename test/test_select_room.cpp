@@ -1,4 +1,4 @@
-// Keyframe selection on the default multi-session room (issue 6): the method against the NCC and
+// Keyframe selection on the default multi-session room: the method against the NCC and
 // histogram baselines on ground truth from the simulator (selection_truth.h), device against the
 // host reference, and the incremental map (selected keyframes only) against the complete one.
 // Room at 60 keyframes per session (the demo's default), 5 cm voxels to keep the suite quick.

@@ -172,7 +172,7 @@ CLI::App* addDemoCommand(CLI::App& app, DemoOptions& o) {
   demo->add_option("--device", o.device, "Vulkan device index or name substring");
   demo->add_flag("--quiet", o.quiet, "No progress bar");
   demo->add_flag("--incremental", o.incremental,
-                 "Also select keyframes and fuse only those (issue 6); about doubles the time");
+                 "Also select keyframes and fuse only those; about doubles the time");
   demo->add_option("--select-window", o.select.smoothing_window,
                    "With --incremental: moving-average window of the selection, keyframes (odd)")
       ->capture_default_str();

@@ -28,7 +28,7 @@ struct DemoOptions {
   bool no_noise = false;
   std::string device;
   bool quiet = false;
-  /// Also run keyframe selection's incremental loop (issue 6): about doubles the demo's time.
+  /// Also run keyframe selection's incremental loop: about doubles the demo's time.
   bool incremental = false;
   /// Its moving-average window and dilation, keyframes (selection::demoLoopConfig's 1 and 0, the
   /// demo's keyframes being 2.8 s apart; the method's 5 and 1 suit overlapping keyframes).

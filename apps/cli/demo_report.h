@@ -35,7 +35,7 @@ struct DemoReport {
   std::vector<SessionResult> sessions;
   change::WorldEvaluation evaluation;  // discovered objects and static map against the truth
   double total_s = 0.0;
-  std::string incremental_summary;               // `--incremental` (issue 6), "" without
+  std::string incremental_summary;               // `--incremental`, "" without
   std::string incremental_json;                  // the same as a JSON object, "" without
   std::optional<IncrementalResult> incremental;  // the figures behind both
 };

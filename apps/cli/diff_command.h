@@ -1,5 +1,5 @@
 #pragma once
-// `strata diff SESSION_DIR... --out DIR`: multi-session change detection (issue 5). Every session
+// `strata diff SESSION_DIR... --out DIR`: multi-session change detection. Every session
 // (a TUM RGB-D / 7-Scenes folder, e.g. written by `strata sim`, or a saved .strata map) is fused
 // into its own layer of a ChangeDetector, in the order given; then the static map's mesh, one PLY
 // per discovered object per session, a label overlay PNG per session and report.json are written.

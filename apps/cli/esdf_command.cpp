@@ -18,7 +18,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// Issue 4's tolerance: share of voxels off by more than one voxel size, mean error in voxels.
+// The ESDF's tolerance: share of voxels off by more than one voxel size, mean error in voxels.
 constexpr double kMaxShareOverVoxel = 0.002;
 constexpr double kMaxMeanErrorVoxels = 0.1;
 

@@ -19,7 +19,7 @@ struct EsdfOptions {
   std::string png_path;         // "" : no picture (the slice is still summarised)
   float max_distance_m = 2.0f;  // the ESDF's maximum distance, also the colour range's top
   /// Also compute the C++ reference and report the share of observed voxels whose device
-  /// distance differs by more than one voxel size (issue 4: at most 0.2 %, mean below 0.1 voxel);
+  /// distance differs by more than one voxel size (target: at most 0.2 %, mean below 0.1 voxel);
   /// exit 1 when over.
   bool voxel_size_check = false;
   std::string device;
@@ -31,7 +31,7 @@ struct EsdfAgreement {
   std::size_t compared = 0;
   std::size_t over_voxel = 0;  // |difference| above one voxel size
   double mean_abs_voxels = 0.0;
-  /// Issue 4's tolerance: at most 0.2 % over one voxel, mean below 0.1 voxel.
+  /// The ESDF's tolerance: at most 0.2 % over one voxel, mean below 0.1 voxel.
   bool ok() const;
 };
 EsdfAgreement compareEsdfWithReference(const EsdfMap& esdf, const EsdfMap& reference);

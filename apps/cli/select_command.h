@@ -1,5 +1,5 @@
 #pragma once
-// `strata select MAP SESSION_DIR --out DIR`: keyframe selection by raycast reprojection (issue 6).
+// `strata select MAP SESSION_DIR --out DIR`: keyframe selection by raycast reprojection.
 // Renders the map into every frame of the session on a sparse pixel grid (device), scores coverage,
 // change and depth change (or a baseline similarity), smooths them along the trajectory, selects
 // the keyframes worth reconstructing and writes keyframes.csv, selection.png (metrics, thresholds,

@@ -1,8 +1,8 @@
 #pragma once
-// The incremental loop of issue 6 inside `strata demo --incremental`: for each new session, select
+// The incremental loop of keyframe selection inside `strata demo --incremental`: for each new session, select
 // its keyframes against the map built so far, fuse only the selected ones, and compare with fusing
 // everything: images used, surface coverage, keyframe-selection scores against the simulator's
-// truth (ours, NCC, histogram), device-vs-reference agreement, and change detection (issue 5) run
+// truth (ours, NCC, histogram), device-vs-reference agreement, and change detection run
 // on the selected keyframes only against the demo's complete run.
 #include <memory>
 #include <string>

@@ -1,5 +1,5 @@
 #pragma once
-// Pictures of a keyframe selection (issue 6): the metrics along the trajectory with their
+// Pictures of a keyframe selection: the metrics along the trajectory with their
 // thresholds and the selected keyframes, and a contact sheet of the selected images.
 #include <cstdint>
 #include <string>

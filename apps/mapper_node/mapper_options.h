@@ -43,8 +43,9 @@ struct MapperOptions {
   double stats_rate_hz = 1.0;
   /// Frames waiting to be fused; more arriving drop the oldest (counted).
   std::size_t queue_capacity = 4;
-  /// Change detection per session (a second fusion into per-session layers): change events on
-  /// session end. Costs about one more fusion per frame.
+  /// Change detection per session: each frame is fused once, into the session's own layer (with
+  /// constant weights and observed free space, as change detection needs); change events on
+  /// session end.
   bool change_detection = true;
   /// Change detection: a voxel differs between a session and the static map by more than this
   /// many voxels (lower finds smaller moves, labels more noise), and counts as observed in a

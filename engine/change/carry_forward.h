@@ -1,5 +1,5 @@
 #pragma once
-// Carrying observations forward into a session that did not look again (issue 6 with issue 5).
+// Carrying observations forward into a session that did not look again.
 // Change detection compares each session's own layer M_i with the static map, so an object that
 // stands in session i as it stood before shows up in session i only if session i fused frames of
 // it. Keyframe selection skips exactly those frames: they agree with the map. What a keyframe

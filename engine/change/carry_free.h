@@ -1,6 +1,6 @@
 #pragma once
 // What skipped keyframes saw change: free space through vacated places and the surfaces of
-// arrived objects (issue 6 with issue 5).
+// arrived objects.
 // When an object leaves, the keyframes that look through its old place measure beyond the map's
 // surface there. The change detector turns that place free in the static map only from
 // min_weight fused frames on; selection fuses few of those keyframes (a removed chair changes

@@ -1,5 +1,5 @@
 #pragma once
-// Parameters and statistics of multi-session change detection (issue 5, DESIGN item 2). The rules
+// Parameters and statistics of multi-session change detection (DESIGN item 2). The rules
 // they parameterise are in change_rules.h.
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 #pragma once
-// Multi-session change detection (issue 5 steps 1-5, DESIGN item 2). Every session is fused into
+// Multi-session change detection (steps 1-5, DESIGN item 2). Every session is fused into
 // its own TSDF layer M_i (layers share one block index); a static estimate S and a label grid D
 // are kept up to date session by session:
 //   endSession(N): D = erosion-then-dilation of difference(S, M_N); S = mergeStatic(S, M_N, D);

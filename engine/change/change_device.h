@@ -1,5 +1,5 @@
 #pragma once
-// Change detection on the device (issue 5 steps 2-5, DESIGN item 2) over the layers of one
+// Change detection on the device (steps 2-5, DESIGN item 2) over the layers of one
 // DeviceTsdfMap: differencing, erosion, dilation, static update and the dynamic parts asked for,
 // recorded in one submission with a timestamp after each stage. Rules: change_rules.h; C++
 // reference: change_reference.h. Every pass runs over all allocated slots; layers share slots, so

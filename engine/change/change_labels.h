@@ -1,5 +1,5 @@
 #pragma once
-// Label layers of multi-session change detection (issue 5): per-voxel labels on the host, keyed
+// Label layers of multi-session change detection: per-voxel labels on the host, keyed
 // like the TSDF map's blocks. The device stores one uint32 per voxel with the same values
 // (shaders/common/change_layout.glsl).
 #include <array>

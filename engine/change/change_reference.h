@@ -1,5 +1,5 @@
 #pragma once
-// C++ reference of the change-detection passes (issue 5 steps 2-5) on host maps: the readable
+// C++ reference of the change-detection passes (steps 2-5) on host maps: the readable
 // specification of what shaders/change_*.comp compute, rule by rule from change_rules.h. A block
 // missing from a map reads as unobserved (TSDF) or kUnknown (labels), as on the device, where
 // every layer holds every block of the shared index.

@@ -1,5 +1,5 @@
 #pragma once
-// The per-voxel rules of change detection (issue 5 steps 2-5, DESIGN item 2): the specification
+// The per-voxel rules of change detection (steps 2-5, DESIGN item 2): the specification
 // that the reference passes (change_reference.h) apply on the host and
 // shaders/common/change_rules.glsl mirrors on the device. A voxel of a layer is observed when its
 // weight is at least ChangeConfig::min_weight.

@@ -1,5 +1,5 @@
 #pragma once
-// Object discovery (issue 5, step 6; DESIGN.md item 2): the parts of one session's surface that
+// Object discovery (step 6; DESIGN.md item 2): the parts of one session's surface that
 // moved, each as its own mesh.
 //
 // Steps (objects.cpp): mesh the session map (marching cubes) -> label every vertex from the

@@ -1,5 +1,5 @@
 #pragma once
-// Views of vacated places for change detection (issue 6 with issue 5). The change detector
+// Views of vacated places for change detection. The change detector
 // trusts a voxel of a session's layer only from `views` fused frames on (its min_weight with
 // constant weights). When an object leaves a place, the keyframes that look through it are
 // selected (the map's surface lies in front of what they measure), but often one or two of them:

@@ -1,5 +1,5 @@
 #pragma once
-// What a keyframe confirmed (issue 6 with issue 5): the surface points where its measured depth
+// What a keyframe confirmed: the surface points where its measured depth
 // agrees with the map it was scored against. Change detection carries the latest observations
 // forward into the session's own layer around these points (change/carry_forward.h), so an
 // object that stands as it stood before is in that session's layer although none (or too few) of

@@ -1,5 +1,5 @@
 #pragma once
-// Keyframe selection by raycast reprojection (issue 6; DESIGN.md source item 1): the current map is
+// Keyframe selection by raycast reprojection (DESIGN.md source item 1): the current map is
 // raycast into a keyframe's pose on a sparse pixel grid and compared with the keyframe's own
 // images.
 //   coverage  m_c = samples whose ray hits the map / samples (where the keyframe has depth, only

@@ -1,5 +1,5 @@
 #pragma once
-// Trajectory-level keyframe selection (issue 6): the per-keyframe metrics of a session, smoothed
+// Trajectory-level keyframe selection: the per-keyframe metrics of a session, smoothed
 // along the trajectory with a moving average, thresholded (coverage below / change above), and the
 // selection dilated to neighbouring keyframes. Thresholds can be estimated automatically from the
 // first session scored against its own reconstruction. Thread safe (pure functions).

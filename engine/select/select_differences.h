@@ -1,5 +1,5 @@
 #pragma once
-// Per-sample differences of keyframe selection (issue 6): the rendered map (raycast_samples.comp)
+// Per-sample differences of keyframe selection: the rendered map (raycast_samples.comp)
 // against the new keyframe, on the device (shaders/sample_differences.comp) and in a plain C++
 // reference of the same semantics. The host takes the upper-half means of these
 // (host/select/keyframe_metrics.cpp), so the device does the per-sample work and the host sorts

@@ -1,5 +1,5 @@
 #pragma once
-// Host mirror of the push constants of shaders/raycast_samples.comp (keyframe selection, issue 6).
+// Host mirror of the push constants of shaders/raycast_samples.comp (keyframe selection).
 #include <cstddef>
 #include <cstdint>
 

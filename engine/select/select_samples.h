@@ -1,5 +1,5 @@
 #pragma once
-// Sparse raycast for keyframe selection (issue 6): the map rendered into a camera on a pixel grid
+// Sparse raycast for keyframe selection: the map rendered into a camera on a pixel grid
 // (every stride-th pixel, centred). Device: shaders/raycast_samples.comp via SampleRaycastKernel;
 // the reference (raycastSamplesReference) marches each sample's ray like raycastReference.
 #include <cstdint>

@@ -1,5 +1,5 @@
 #pragma once
-// Evaluation of change detection against ground truth (issue 5 tests): discovered objects against
+// Evaluation of change detection against ground truth (tests): discovered objects against
 // the objects that moved, and the static map against the static world.
 //
 // Object discovery, per session. A moved object counts as found when one discovered segment covers
@@ -28,14 +28,14 @@ struct EvaluationConfig {
   /// A point lies on a surface within this distance: the fused mesh's error plus the bevel
   /// marching cubes puts on edges (about a voxel); 2 voxels at 2 cm.
   float match_distance_m = 0.04f;
-  float found_min_coverage = 0.5f;   // issue 5: 50 %
-  float found_min_on_object = 0.8f;  // issue 5: 80 %
+  float found_min_coverage = 0.5f;   // target: 50 %
+  float found_min_on_object = 0.8f;  // target: 80 %
   float segment_min_on_object = 0.5f;
   float under_segment_min_share = 0.2f;
   /// Moved objects with less seen surface (points x spacing^2) are left out of the recall: a
   /// glimpse at a frame's edge is not enough to map an object.
   float min_visible_area_m2 = 0.01f;
-  /// Static surface within this of the static mesh counts as reconstructed (issue 5: 2 cm).
+  /// Static surface within this of the static mesh counts as reconstructed (target: 2 cm).
   float static_tolerance_m = 0.02f;
   /// A surface point counts as seen by a session when at least this many of its frames saw it.
   /// With constant fusion weights set it to the change detector's min_weight: a voxel seen in

@@ -28,7 +28,7 @@ WorldEvaluation evaluateWorld(const sim::World& world,
 /// Recall over arrivals: a moved object counts in session s >= 1 only where it changed since
 /// session s - 1 (moved there or added): the instance in which its change is new. Its instances in
 /// sessions where it stood as in the session before are left out: a map that fuses only the images
-/// that show something new (issue 6) looks at an object again only when it changed.
+/// that show something new looks at an object again only when it changed.
 struct ArrivalCounts {
   std::size_t arrivals = 0;  // evaluated moved objects that changed since the previous session
   std::size_t found = 0;

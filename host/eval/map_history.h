@@ -1,5 +1,5 @@
 #pragma once
-// What a map was built from, for the ground truth of keyframe selection (issue 6): per finished
+// What a map was built from, for the ground truth of keyframe selection: per finished
 // session, the simulated world of that session and the places its fused keyframes saw. A keyframe
 // of a later session sees change where the surface differs from the one the map last observed
 // there, which is not always the previous session's: when an object moved in a session whose

@@ -1,5 +1,5 @@
 #pragma once
-// The incremental reconstruction loop of issue 6 on simulated sessions: the first session is fused
+// The incremental reconstruction loop of keyframe selection on simulated sessions: the first session is fused
 // completely (and, with automatic thresholds, scored against its own reconstruction); every later
 // session is scored against the map built so far, its keyframes selected, and only the selected
 // ones fused (incremental) or all of them (complete, the comparison). Optionally computes the

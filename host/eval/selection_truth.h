@@ -1,5 +1,5 @@
 #pragma once
-// Ground truth of keyframe selection on a simulated world (issue 6), computed from the simulator
+// Ground truth of keyframe selection on a simulated world, computed from the simulator
 // only, never from the method's outputs.
 //
 // A keyframe of session N >= 1 is worth reconstructing (positive) when at least

@@ -1,5 +1,5 @@
 #version 450
-// change_difference: issue 5 step 2, label D before clean-up: differenceLabel(S, M_N) per voxel.
+// change_difference: step 2, label D before clean-up: differenceLabel(S, M_N) per voxel.
 // Reference: engine/kernels/change_reference.cpp (differenceReference); rule in change_rules.h.
 // Workgroup: 256 x 1 x 1, one invocation per 4 voxels of the allocated slots (layers share slots,
 // so voxel i of every layer is the same voxel).

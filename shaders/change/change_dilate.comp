@@ -1,5 +1,5 @@
 #version 450
-// change_dilate: issue 5 step 3, dilation: dilatedLabel(raw, eroded dynamic voxels in the
+// change_dilate: step 3, dilation: dilatedLabel(raw, eroded dynamic voxels in the
 // kernel^3 cube, mask) for the 8 voxels of a row, the cube tested on eroded row masks
 // (change_rules.h; change_rows.glsl).
 // Reference: engine/kernels/change_reference.cpp (dilateReference).

@@ -1,5 +1,5 @@
 #version 450
-// change_erode: issue 5 step 3, erosion on dynamic row masks (change_rows.glsl): a raw dynamic
+// change_erode: step 3, erosion on dynamic row masks (change_rows.glsl): a raw dynamic
 // voxel stays dynamic when at least half of the kernel^3 cube around it is raw dynamic
 // (erodedLabel in engine/kernels/change_rules.h; voxels that fail become static, which the
 // dilation reads from the raw labels).

@@ -1,5 +1,5 @@
 #version 450
-// change_session_dynamic: issue 5 step 5 before clean-up: sessionDynamicLabel(M_i, S) per voxel.
+// change_session_dynamic: step 5 before clean-up: sessionDynamicLabel(M_i, S) per voxel.
 // Reference: engine/kernels/change_reference.cpp (sessionDynamicRawReference); rule in
 // change_rules.h.
 // Workgroup: 256 x 1 x 1, one invocation per 4 voxels of the allocated slots (layers share slots,

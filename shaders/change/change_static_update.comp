@@ -1,5 +1,5 @@
 #version 450
-// change_static_update: issue 5 step 4, S <- mergeStatic(S, M_N, D) per voxel.
+// change_static_update: step 4, S <- mergeStatic(S, M_N, D) per voxel.
 // Reference: engine/kernels/change_reference.cpp (staticUpdateReference); rule in change_rules.h.
 // Workgroup: 256 x 1 x 1, one invocation per 4 voxels of the allocated slots; each voxel of S is
 // read and written by its own invocation only.

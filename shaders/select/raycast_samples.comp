@@ -1,6 +1,6 @@
 #version 450
 // raycast_samples: the raycast of raycast_tsdf on a sparse pixel grid, for keyframe selection
-// (issue 6): per sample the hit, the rendered depth and the voxel colour at the hit. Same march
+//: per sample the hit, the rendered depth and the voxel colour at the hit. Same march
 // (raycast_march.glsl), so a grid with stride 1 matches raycast_tsdf pixel for pixel.
 // Surface check: where the keyframe measured depth d (inside the map's fusion range) at the
 // sample, the map's interpolated TSDF

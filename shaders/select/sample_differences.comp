@@ -1,5 +1,5 @@
 #version 450
-// sample_differences: per raycast sample of keyframe selection (issue 6), the colour and depth
+// sample_differences: per raycast sample of keyframe selection, the colour and depth
 // differences between the rendered map and the new keyframe, from which the host takes the
 // upper-half means (keyframe_metrics.cpp). Colour: both images blurred with a 3x3 binomial over
 // the grid, averaging only samples that hit the map (same support for both), then chromaticity

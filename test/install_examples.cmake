@@ -1,0 +1,38 @@
+# ctest script: installs the build into a temporary prefix, builds examples/ against the installed
+# package (find_package(strata CONFIG)) and runs both programs. Fails on any step's error.
+#   -DBUILD_DIR=... -DSOURCE_DIR=... -DWORK_DIR=... -DDATA_DIR=...
+function(run_step what)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE result OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  message(STATUS "${what}:\n${out}${err}")
+  if(NOT result EQUAL 0)
+    message(FATAL_ERROR "${what} failed (${result})")
+  endif()
+endfunction()
+
+file(REMOVE_RECURSE "${WORK_DIR}")
+set(prefix "${WORK_DIR}/prefix")
+run_step("install" ${CMAKE_COMMAND} --install "${BUILD_DIR}" --prefix "${prefix}")
+if(NOT EXISTS "${prefix}/include/strata/mapper/mapper.h")
+  message(FATAL_ERROR "the public header mapper/mapper.h was not installed")
+endif()
+if(EXISTS "${prefix}/include/strata/change/internal")
+  message(FATAL_ERROR "internal headers were installed")
+endif()
+find_program(CCACHE ccache)
+set(launcher "")
+if(CCACHE)
+  set(launcher "-DCMAKE_CXX_COMPILER_LAUNCHER=${CCACHE}")
+endif()
+run_step("configure examples" ${CMAKE_COMMAND} -S "${SOURCE_DIR}/examples" -B "${WORK_DIR}/build" -G Ninja
+         -DCMAKE_BUILD_TYPE=Release "-DCMAKE_PREFIX_PATH=${prefix}" ${launcher})
+run_step("build examples" ${CMAKE_COMMAND} --build "${WORK_DIR}/build" -j 2)
+run_step("esdf_path" "${WORK_DIR}/build/esdf_path")
+if(EXISTS "${DATA_DIR}/redkitchen/rgb.txt")
+  run_step("fuse_tum" "${WORK_DIR}/build/fuse_tum" "${DATA_DIR}/redkitchen"
+           "${WORK_DIR}/kitchen.ply" 0.05)
+  if(NOT EXISTS "${WORK_DIR}/kitchen.ply")
+    message(FATAL_ERROR "fuse_tum wrote no mesh")
+  endif()
+else()
+  message(STATUS "fuse_tum not run: ${DATA_DIR}/redkitchen not found")
+endif()
