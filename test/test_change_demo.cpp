@@ -112,7 +112,7 @@ TEST(DiffCommand, ComparesSimulatedSessionsAndWritesEveryOutput) {
 // Keyframe selection, in the same run (--incremental): fusing only the selected keyframes keeps >= 98 % of
 // the complete map's coverage, and change detection on them finds the moved objects the complete
 // run finds, within one (every instance and arrivals).
-TEST(ChangeDemo, DefaultRoomMeetsTheIssueTargets) {
+TEST(ChangeDemo, DefaultRoomMeetsItsTargets) {
   apps::DemoOptions options;
   options.out_dir = freshDir("strata_change_demo").string();
   options.quiet = true;
