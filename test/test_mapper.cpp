@@ -128,7 +128,9 @@ TEST(Mapper, RealKitchenFramesFuseQueryMeshAndRoundTrip) {
   for (std::size_t i = 0; i < 30; i += 3) {
     const RgbdFrame frame = data->load(i);
     const KeyframeDecision decision = mapper.scoreKeyframe(frame, data->intrinsics());
-    if (i == 0) EXPECT_TRUE(decision.keyframe) << "an empty map explains nothing";
+    if (i == 0) {
+      EXPECT_TRUE(decision.keyframe) << "an empty map explains nothing";
+    }
     mapper.integrate(frame, data->intrinsics());
   }
   // The next frame of the same view: the map covers most of it.
