@@ -75,7 +75,7 @@ int runChecked(const EsdfOptions& o) {
   mapper_config.map = tsdf.config();
   mapper_config.esdf = true;
   mapper_config.esdf_config = config;
-  const std::unique_ptr<Mapper> mapper = Mapper::load(o.map_path, *context, mapper_config);
+  const std::unique_ptr<Mapper> mapper = Mapper::fromMap(tsdf, *context, mapper_config);
   const EsdfUpdateStats stats = mapper->updateEsdf();  // the first update: every block
   const EsdfMap& host = mapper->esdf();
 

@@ -15,7 +15,6 @@ struct Mapper::Impl {
   // i + 1) when change detection is on, else a plain fusion into layer 0.
   std::unique_ptr<DeviceFusion> fusion;
   std::unique_ptr<change::ChangeDetector> detector;
-  int detector_session = -1;
   DeviceTsdfMap* map = nullptr;  // the owner's device map (stable: both live on the heap)
 
   std::unique_ptr<DeviceEsdf> esdf;  // follows esdf_layer; recreated when the live layer moves
@@ -64,14 +63,16 @@ DeviceTsdfMap& Mapper::deviceMap() { return *impl_->map; }
 
 int Mapper::liveLayer() const {
   if (!impl_->detector || !session_open_) return 0;
-  return change::ChangeDetector::sessionLayer(impl_->detector_session);
+  return change::ChangeDetector::sessionLayer(sessions_ - 1);
 }
 
 std::uint32_t Mapper::blockCount() const { return impl_->map->blockCount(); }
 
 void Mapper::openSessionIfNeeded() {
   if (session_open_) return;
-  if (impl_->detector) impl_->detector_session = impl_->detector->beginSession();
+  // The detector numbers its sessions as this count does (a loaded map is its session 0).
+  if (impl_->detector) impl_->detector->beginSession();
+  ++sessions_;
   session_open_ = true;
   session_frames_ = 0;
 }
@@ -79,19 +80,18 @@ void Mapper::openSessionIfNeeded() {
 int Mapper::beginSession() {
   if (session_open_) endSession();
   openSessionIfNeeded();
-  return sessions_++;
+  return sessions_ - 1;
 }
 
 SessionResult Mapper::endSession() {
   if (!session_open_) throw InputError("endSession: no session is open");
   SessionResult result;
-  result.session = impl_->detector ? impl_->detector_session : sessions_ - 1;
+  result.session = sessions_ - 1;
   result.frames = session_frames_;
   session_open_ = false;
   if (impl_->detector) {
-    result.update = impl_->detector->endSession(impl_->detector_session);
-    result.objects =
-        change::sessionObjects(*impl_->detector, impl_->detector_session, config_.objects);
+    result.update = impl_->detector->endSession(result.session);
+    result.objects = change::sessionObjects(*impl_->detector, result.session, config_.objects);
   }
   return result;
 }
@@ -101,23 +101,21 @@ TsdfMap Mapper::staticMap() {
   return download();
 }
 
-IntegrateStats Mapper::integrate(const RgbdFrame& frame, const CameraIntrinsics& intrinsics) {
-  return integrate(frame, intrinsics, frame.T_W_C);
-}
-
 IntegrateStats Mapper::integrate(const RgbdFrame& frame, const CameraIntrinsics& intrinsics,
                                  const Eigen::Isometry3d& T_W_C) {
-  validatePose(T_W_C, "integrate: T_W_C");
-  RgbdFrame posed = frame;  // NOTE: a shallow price (images are copied) for a const interface
+  // NOTE: fusion reads the pose from the frame, so an explicit pose costs a copy of the images.
+  RgbdFrame posed = frame;
   posed.T_W_C = T_W_C;
-  if (!session_open_) {
-    openSessionIfNeeded();
-    ++sessions_;
-  }
+  return integrate(posed, intrinsics);
+}
+
+IntegrateStats Mapper::integrate(const RgbdFrame& frame, const CameraIntrinsics& intrinsics) {
+  validatePose(frame.T_W_C, "integrate: T_W_C");
+  openSessionIfNeeded();
   IntegrateStats stats;
   stats.fusion = impl_->detector
-                     ? impl_->detector->integrate(impl_->detector_session, posed, intrinsics)
-                     : impl_->fusion->integrate(posed, intrinsics);
+                     ? impl_->detector->integrate(sessions_ - 1, frame, intrinsics)
+                     : impl_->fusion->integrate(frame, intrinsics);
   const std::vector<BlockIndex>& touched = liveFusion().lastTouchedBlocks();
   impl_->dirty.insert(touched.begin(), touched.end());
   if (impl_->esdf && impl_->esdf_layer == liveLayer()) impl_->esdf->markDirty(touched);
@@ -267,7 +265,11 @@ void Mapper::save(const std::string& path) {
 
 std::unique_ptr<Mapper> Mapper::load(const std::string& path, vk::Context& context,
                                      MapperConfig config) {
-  const TsdfMap map = loadMap(path);
+  return fromMap(loadMap(path), context, std::move(config));
+}
+
+std::unique_ptr<Mapper> Mapper::fromMap(const TsdfMap& map, vk::Context& context,
+                                        MapperConfig config) {
   config.map.voxel_size_m = map.config().voxel_size_m;
   config.map.truncation_voxels = map.config().truncation_voxels;
   auto mapper = std::make_unique<Mapper>(config, context);

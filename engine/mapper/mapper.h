@@ -135,6 +135,9 @@ class Mapper {
   /// truncation replace config.map's. InputError naming the file when it cannot be read.
   static std::unique_ptr<Mapper> load(const std::string& path, vk::Context& context,
                                       MapperConfig config = {});
+  /// The same from a map in memory (e.g. one already read for other uses).
+  static std::unique_ptr<Mapper> fromMap(const TsdfMap& map, vk::Context& context,
+                                         MapperConfig config = {});
 
   const MapperConfig& config() const { return config_; }
   std::size_t framesIntegrated() const { return frames_; }
