@@ -1,6 +1,6 @@
 // Carrying observations forward into a session's change-detection layer (change/carry_forward.h)
 // around the points keyframes confirmed (select/confirmed_points.h, tested with the other
-// selection-side helpers in test_change_support.cpp): the per-voxel rule, the latest-observation
+// selection-side helpers in test_changed_views.cpp): the per-voxel rule, the latest-observation
 // map, bad input, and the reference detector finding an object that stands as before in a
 // session that fused none of its frames.
 #include <gtest/gtest.h>

@@ -159,10 +159,16 @@ TEST(Mapper, RealKitchenFramesFuseQueryMeshAndRoundTrip) {
   expectRoundTrip(mapper, config, "kitchen");
 }
 
-TEST(Mapper, SessionRoundTripFusesOnceAndFindsWhatTheDetectorFinds) {
+/// The box that appears between the two analytic sessions of the session tests.
+sim::Box appearingBox() {
   sim::Box box;
   box.centre_W = Eigen::Vector3d(-1.0, -0.3, 0.15);
   box.half_extents_m = Eigen::Vector3d(0.15, 0.15, 0.15);
+  return box;
+}
+
+TEST(Mapper, SessionRoundTripFusesOnceAndFindsWhatTheDetectorFinds) {
+  const sim::Box box = appearingBox();
   const sim::AnalyticDataset before = test::analyticSession({}, 6);
   const sim::AnalyticDataset after = test::analyticSession({box}, 6);
   const float voxel_m = 0.04f;
@@ -200,6 +206,45 @@ TEST(Mapper, SessionRoundTripFusesOnceAndFindsWhatTheDetectorFinds) {
                                   (box.centre_W + box.half_extents_m).cast<float>());
   EXPECT_TRUE(truth.contains(second.objects.front().centroid));
   EXPECT_TRUE(first.objects.empty()) << "the first session has nothing to differ from";
+}
+
+TEST(Mapper, ASavedMapAsASessionFindsWhatFusingTheSessionFinds) {
+  const sim::Box box = appearingBox();
+  const sim::AnalyticDataset before = test::analyticSession({}, 6);
+  const sim::AnalyticDataset after = test::analyticSession({box}, 6);
+  const float voxel_m = 0.04f;
+  MapperConfig plain;
+  plain.map = test::testMapConfig(voxel_m, true);
+  Mapper other_day(plain, test::sharedContext());
+  for (std::size_t i = 0; i < after.size(); ++i) other_day.integrate(after.load(i), after.intrinsics());
+  const TsdfMap saved = other_day.download();
+
+  MapperConfig config = plain;
+  config.change_detection = true;
+  config.change = test::testChangeConfig(voxel_m);
+  Mapper mapper(config, test::sharedContext());
+  mapper.beginSession();
+  for (std::size_t i = 0; i < before.size(); ++i) mapper.integrate(before.load(i), before.intrinsics());
+  EXPECT_THROW(mapper.addSessionMap(saved), InputError) << "a session is open";
+  mapper.endSession();
+  const SessionResult added = mapper.addSessionMap(saved);
+  EXPECT_EQ(added.session, 1);
+  EXPECT_EQ(mapper.sessionCount(), 2);
+  ASSERT_GE(added.objects.size(), 1u) << "the box the saved map holds";
+  const Eigen::AlignedBox3f truth((box.centre_W - box.half_extents_m).cast<float>(),
+                                  (box.centre_W + box.half_extents_m).cast<float>());
+  EXPECT_TRUE(truth.contains(added.objects.front().centroid));
+
+  MapperConfig quiet = config;
+  quiet.discover_objects = false;  // discovered later against the final static map
+  Mapper later(quiet, test::sharedContext());
+  later.beginSession();
+  for (std::size_t i = 0; i < before.size(); ++i) later.integrate(before.load(i), before.intrinsics());
+  later.endSession();
+  EXPECT_TRUE(later.addSessionMap(saved).objects.empty()) << "the box is there, not discovered";
+  EXPECT_FALSE(change::sessionObjects(later.changeDetector(), 1, config.objects).empty());
+  EXPECT_THROW(other_day.addSessionMap(saved), InputError) << "change detection off";
+  EXPECT_THROW(other_day.changeDetector(), InputError);
 }
 
 TEST(Mapper, BadInputIsRefusedBeforeAnythingChanges) {

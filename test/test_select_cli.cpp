@@ -89,9 +89,9 @@ TEST_F(SelectCliTest, WritesCsvPlotAndContactSheet) {
   std::vector<std::string> rows;
   for (std::string line; std::getline(with_surface, line);) rows.push_back(line);
   ASSERT_EQ(rows.size(), 1u + 8u);
-  // triggered, selected, change view (only the demo's incremental loop adds those)
-  EXPECT_EQ(rows[8].substr(rows[8].size() - 6), ",1,1,0") << rows[8];
-  EXPECT_EQ(rows[1].substr(rows[1].size() - 6), ",0,0,0") << rows[1];
+  // ... similarity_smoothed, triggered, selected
+  EXPECT_EQ(rows[8].substr(rows[8].size() - 12), ",0.00000,1,1") << rows[8];
+  EXPECT_EQ(rows[1].substr(rows[1].size() - 12), ",0.00000,0,0") << rows[1];
   // Coverage demanded beyond what the frames show selects them all.
   o.calibrate_dir.clear();
   o.coverage_threshold = 1.01;
@@ -134,8 +134,6 @@ TEST_F(SelectCliTest, TruthColumnsAndStrip) {
   config.dilation = 0;
   selection::TrajectorySelection s = selection::selectKeyframes(scores, config);
   ASSERT_EQ(s.selectedCount(), 1u);
-  s.support.assign(kKeyframes, 0);
-  s.support[3] = 1;  // added as a view for change detection
   std::vector<apps::ScoredKeyframe> keyframes(kKeyframes);
   std::vector<selection::KeyframeTruth> truth(kKeyframes);
   for (std::size_t i = 0; i < kKeyframes; ++i) {
@@ -157,11 +155,11 @@ TEST_F(SelectCliTest, TruthColumnsAndStrip) {
   std::vector<std::string> rows;
   while (std::getline(in, line)) rows.push_back(line);
   ASSERT_EQ(rows.size(), kKeyframes);
-  // ... triggered, selected, change view, then the truth: selected and positive; missed and
-  // positive; a view for change detection, negative.
-  EXPECT_EQ(rows[2].substr(rows[2].size() - 24), ",1,1,0,0.00000,0.80000,1") << rows[2];
-  EXPECT_EQ(rows[4].substr(rows[4].size() - 24), ",0,0,0,0.05000,0.00000,1") << rows[4];
-  EXPECT_EQ(rows[3].substr(rows[3].size() - 24), ",0,0,1,0.00000,0.00000,0") << rows[3];
+  // ... triggered, selected, then the truth: selected and positive; missed and positive;
+  // neither.
+  EXPECT_EQ(rows[2].substr(rows[2].size() - 22), ",1,1,0.00000,0.80000,1") << rows[2];
+  EXPECT_EQ(rows[4].substr(rows[4].size() - 22), ",0,0,0.05000,0.00000,1") << rows[4];
+  EXPECT_EQ(rows[3].substr(rows[3].size() - 22), ",0,0,0.00000,0.00000,0") << rows[3];
   EXPECT_EQ(rows[0].back(), '0');
   truth.pop_back();
   EXPECT_THROW(apps::writeSelectionCsv(csv.string(), keyframes, s, truth), std::invalid_argument);
@@ -180,24 +178,19 @@ TEST_F(SelectCliTest, TruthColumnsAndStrip) {
   };
   EXPECT_EQ(count(plain, 70, 70, 190), 0u);
   EXPECT_GT(count(with_truth, 70, 70, 190), 0u);  // the two positive keyframes' cells
-  EXPECT_GT(count(plain, 235, 150, 40), 0u);      // the change view's cell
-  s.support.clear();
-  EXPECT_EQ(count(apps::renderSelectionPlot(s, config), 235, 150, 40), 0u);
 }
 
 // A bad selection setting of `strata demo --incremental` ends it before any session is simulated.
-TEST(SelectDemoOptions, BadWindowDilationOrViewMinimumExitsBeforeTheWork) {
+TEST(SelectDemoOptions, BadWindowOrDilationExitsBeforeTheWork) {
   apps::DemoOptions o;
   o.incremental = true;
   o.quiet = true;
   o.out_dir =
       (fs::temp_directory_path() / ("strata_demo_bad_" + std::to_string(::getpid()))).string();
-  for (const auto& [window, dilation, min_points, field] :
-       {std::tuple{4, 0, 30, "smoothing_window"}, std::tuple{1, -1, 30, "dilation"},
-        std::tuple{1, 0, 0, "min_points"}}) {
+  for (const auto& [window, dilation, field] :
+       {std::tuple{4, 0, "smoothing_window"}, std::tuple{1, -1, "dilation"}}) {
     o.select.smoothing_window = window;
     o.select.dilation = dilation;
-    o.select.change_view_min_points = min_points;
     testing::internal::CaptureStderr();
     EXPECT_EQ(apps::runDemo(o), 2);
     const std::string err = testing::internal::GetCapturedStderr();

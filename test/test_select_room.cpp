@@ -29,8 +29,8 @@ std::vector<std::shared_ptr<sim::SimSessionDataset>> roomSessions() {
   return out;
 }
 
-void checkMethods(const SelectionLoop& complete) {
-  const std::vector<MethodResult> results = evaluateMethods(complete);
+void checkMethods(const SelectionLoop& complete, const LoopTruth& truth) {
+  const std::vector<MethodResult> results = evaluateMethods(complete, truth);
   const Thresholds& t = complete.thresholds();
   std::printf(
       "automatic thresholds: coverage %.3f, colour change %.3f, depth change %.3f m, ncc %.3f, "
@@ -75,15 +75,16 @@ ImageUse printImageUse(const SelectionLoop& incremental) {
 TEST(SelectRoom, BeatsBaselinesAgreesWithReferenceAndKeepsCoverage) {
   SelectionLoop complete(test::sharedContext(), demoLoopConfig(false));
   SelectionLoop incremental(test::sharedContext(), demoLoopConfig(true));
+  LoopTruth complete_truth, incremental_truth;
   for (const auto& session : roomSessions()) {
-    complete.addSession(*session);
-    incremental.addSession(*session);
+    complete_truth.addSession(complete, *session);
+    incremental_truth.addSession(incremental, *session);
   }
-  checkMethods(complete);
+  checkMethods(complete, complete_truth);
   checkDeviceAgainstReference(complete);
   printImageUse(incremental);
-  const double complete_coverage = complete.mapCoverage().ratio();
-  const double incremental_coverage = incremental.mapCoverage().ratio();
+  const double complete_coverage = complete_truth.mapCoverage(complete).ratio();
+  const double incremental_coverage = incremental_truth.mapCoverage(incremental).ratio();
   std::printf("surface coverage: incremental %.2f %%, complete %.2f %% (%.2f %% of it)\n",
               100.0 * incremental_coverage, 100.0 * complete_coverage,
               100.0 * incremental_coverage / complete_coverage);

@@ -13,7 +13,7 @@
 #include "cli/progress.h"
 #include "cli/select_incremental.h"
 #include "cli/sim_setup.h"
-#include "cli/views.h"
+#include "cli/shaded_view.h"
 #include "eval/evaluation_session.h"
 #include "eval/evaluation_world.h"
 #include "core/error.h"
@@ -109,9 +109,6 @@ DemoReport runDemoPipeline(const DemoOptions& o) {
     check.smoothing_window = o.select.smoothing_window;
     check.dilation = o.select.dilation;
     check.validate();
-    selection::SupportConfig support;
-    support.min_points = o.select.change_view_min_points;
-    support.validate();
   }
   const auto world = loadWorld(o.world, o.seed, o.sessions);
   const sim::SimSessionConfig config = sessionConfig(30.0, o.frames, !o.no_noise, false);
@@ -175,13 +172,6 @@ CLI::App* addDemoCommand(CLI::App& app, DemoOptions& o) {
                  "Also select keyframes and fuse only those; about doubles the time");
   demo->add_option("--select-window", o.select.smoothing_window,
                    "With --incremental: moving-average window of the selection, keyframes (odd)")
-      ->capture_default_str();
-  demo->add_flag("--change-views", o.select.change_views,
-                 "With --incremental: also fuse keyframes that see vacated places, until each is "
-                 "seen by the change detector's minimum of frames");
-  demo->add_option("--change-view-min-points", o.select.change_view_min_points,
-                   "With --incremental: vacated points short of views a keyframe must pass to be "
-                   "added as a view for change detection")
       ->capture_default_str();
   demo->add_flag(
       "--no-carry-forward", [&o](std::int64_t) { o.select.carry_forward = false; },

@@ -1,7 +1,7 @@
 #pragma once
-// The work shared by `strata diff` and `strata demo`: sessions fused into a ChangeDetector one
-// after the other, then the static mesh and every session's discovered objects against the final
-// static map.
+// The work shared by `strata diff` and `strata demo`: sessions fused by a Mapper with change
+// detection one after the other, then the static mesh and every session's discovered objects
+// against the final static map.
 #include <functional>
 #include <memory>
 #include <string>
@@ -9,6 +9,7 @@
 
 #include "cli/progress.h"
 #include "change/change_detector.h"
+#include "mapper/mapper.h"
 #include "change/objects.h"
 #include "io/dataset.h"
 #include "mesh/mesh.h"
@@ -52,10 +53,10 @@ class DiffPipeline {
   /// receives every session's own map (host copies). Call once, after the last session.
   DiffResult finish(std::vector<TsdfMap>* maps = nullptr);
 
-  change::ChangeDetector& detector() { return detector_; }
+  change::ChangeDetector& detector() { return mapper_.changeDetector(); }
 
  private:
-  change::ChangeDetector detector_;
+  Mapper mapper_;
   change::ObjectConfig object_config_;
   std::vector<DiffSession> sessions_;
 };

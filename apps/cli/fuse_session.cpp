@@ -9,7 +9,7 @@
 
 #include "cli/esdf_slice.h"
 #include "cli/progress.h"
-#include "cli/views.h"
+#include "cli/shaded_view.h"
 #include "core/error.h"
 #include "eval/accuracy.h"
 #include "io/image_io.h"

@@ -11,7 +11,7 @@
 #include "cli/select_plot.h"
 #include "core/error.h"
 #include "io/dataset.h"
-#include "map/device_tsdf_map.h"
+#include "mapper/mapper.h"
 #include "map/map_file.h"
 #include "select/keyframe_scorer.h"
 
@@ -29,20 +29,20 @@ std::size_t frameCount(const Dataset& dataset, int frames) {
   return frames > 0 ? std::min<std::size_t>(dataset.size(), frames) : dataset.size();
 }
 
-Scored scoreDataset(selection::KeyframeScorer& scorer, DeviceTsdfMap& map, const Dataset& dataset,
-                    int frames, const std::string& label, bool quiet) {
+Scored scoreDataset(Mapper& mapper, const Dataset& dataset, int frames, const std::string& label,
+                    bool quiet) {
   Scored out;
   const std::size_t n = frameCount(dataset, frames);
   ProgressBar progress(label, n, !quiet);
   for (std::size_t i = 0; i < n; ++i) {
     const RgbdFrame frame = dataset.load(i);
-    double device_ms = 0.0;
+    const KeyframeDecision decision = mapper.scoreKeyframe(frame, dataset.intrinsics());
     ScoredKeyframe k;
     k.name = frame.name;
     k.timestamp_s = frame.timestamp_s;
-    k.score = scorer.score(map, frame, dataset.intrinsics(), &device_ms);
+    k.score = decision.score;
     if (!frame.color.empty()) k.thumbnail = thumbnail(frame.color);
-    out.device_ms += device_ms;
+    out.device_ms += decision.device_ms;
     out.keyframes.push_back(std::move(k));
     progress.update(i + 1);
   }
@@ -102,16 +102,18 @@ int runChecked(const SelectOptions& o) {
   vk::ContextOptions context_options;
   context_options.device_selector = o.device;
   const auto context = vk::Context::create(context_options);
-  DeviceTsdfMap map(*context, host_map.config());
-  map.upload(host_map);
-  selection::ScorerConfig scorer_config;
-  scorer_config.sample_stride_px = o.stride_px;
-  selection::KeyframeScorer scorer(*context, scorer_config);
+  MapperConfig mapper_config;
+  mapper_config.map = host_map.config();
+  mapper_config.keyframe_scoring = true;
+  mapper_config.scorer.sample_stride_px = o.stride_px;
+  // The trajectory decision below (smoothing, dilation) is this program's; the Mapper's own
+  // per-frame decision is not used.
+  const std::unique_ptr<Mapper> mapper = Mapper::fromMap(host_map, *context, mapper_config);
   if (calibration) {
-    const Scored own = scoreDataset(scorer, map, *calibration, o.frames, "calibrate", o.quiet);
+    const Scored own = scoreDataset(*mapper, *calibration, o.frames, "calibrate", o.quiet);
     config.thresholds = selection::autoThresholds(scoresOf(own), o.window, config.thresholds);
   }
-  const Scored scored = scoreDataset(scorer, map, *session, o.frames, "score keyframes", o.quiet);
+  const Scored scored = scoreDataset(*mapper, *session, o.frames, "score keyframes", o.quiet);
   const selection::TrajectorySelection s = selection::selectKeyframes(scoresOf(scored), config);
   std::filesystem::create_directories(o.out_dir);
   writeSelectionCsv((std::filesystem::path(o.out_dir) / "keyframes.csv").string(), scored.keyframes,
@@ -131,7 +133,7 @@ CLI::App* addSelectCommand(CLI::App& app, SelectOptions& o) {
   c->add_option("session", o.session_dir, "Session folder (TUM RGB-D or 7-Scenes layout)")
       ->required();
   c->add_option("--out", o.out_dir, "Output folder")->capture_default_str();
-  c->add_option("--method", o.method, "ours | ncc | hist")->capture_default_str();
+  c->add_option("--method", o.method, "reproj (raycast reprojection) | ncc | hist")->capture_default_str();
   c->add_option("--calibrate", o.calibrate_dir,
                 "Session the map was built from: automatic thresholds from its own frames");
   c->add_option("--stride", o.stride_px, "Sample every n-th pixel")->capture_default_str();

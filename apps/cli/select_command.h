@@ -16,7 +16,7 @@ struct SelectOptions {
   std::string map_path;
   std::string session_dir;
   std::string out_dir = "strata_select";
-  std::string method = "ours";  // ours | ncc | hist
+  std::string method = "reproj";  // reproj | ncc | hist
   /// Session the map was built from: the thresholds become its extremes against the map
   /// (automatic thresholds); the explicit thresholds below are then ignored.
   std::string calibrate_dir;

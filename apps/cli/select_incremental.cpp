@@ -42,7 +42,7 @@ std::vector<std::size_t> indicesOf(const std::vector<std::uint8_t>& fused) {
 
 /// Change detection on the fused keyframes of every session. Before each session ends, its layer
 /// takes the free space its skipped keyframes saw through vacated places (options.free_space,
-/// change/carry_free.h), then the latest observations around the points its keyframes confirmed
+/// change/skipped_keyframe_evidence.h), then the latest observations around the points its keyframes confirmed
 /// (options.carry_forward, change/carry_forward.h), never where it took free space.
 change::WorldEvaluation detectOnSelected(vk::Context& context, const sim::World& world,
                                          const Sessions& sessions, const MapConfig& change_map,
@@ -137,8 +137,9 @@ std::vector<InstanceOutcome> instanceOutcomes(const sim::World& world,
 
 /// Per session: the plot of the metrics along the trajectory with the selected and
 /// the truly positive keyframes, and the same as CSV (metrics, decisions, true pixel shares).
-void writeSessionFiles(const selection::SelectionLoop& loop, const Sessions& sessions,
-                       const std::string& out_dir, std::vector<std::string>& files) {
+void writeSessionFiles(const selection::SelectionLoop& loop, const selection::LoopTruth& loop_truth,
+                       const Sessions& sessions, const std::string& out_dir,
+                       std::vector<std::string>& files) {
   selection::SelectionConfig config = loop.config().selection;
   config.thresholds = loop.thresholds();
   for (const auto& run : loop.sessions()) {
@@ -155,9 +156,10 @@ void writeSessionFiles(const selection::SelectionLoop& loop, const Sessions& ses
       keyframes[i].timestamp_s = sessions.at(run.session)->session().timestamp(i);
       keyframes[i].score = run.scores[i];
     }
-    for (const auto& t : run.truth) truth.push_back(t.positive ? 1 : 0);
+    const std::vector<selection::KeyframeTruth>& run_truth = loop_truth.truth(run.session);
+    for (const auto& t : run_truth) truth.push_back(t.positive ? 1 : 0);
     writeColorPng(stem.string() + ".png", renderSelectionPlot(selection, config, truth));
-    writeSelectionCsv(stem.string() + ".csv", keyframes, selection, run.truth);
+    writeSelectionCsv(stem.string() + ".csv", keyframes, selection, run_truth);
     files.push_back(stem.string() + ".png");
     files.push_back(stem.string() + ".csv");
   }
@@ -171,12 +173,10 @@ IncrementalResult runIncremental(vk::Context& context, const sim::World& world,
                                  const std::string& out_dir, bool quiet,
                                  const IncrementalOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-  const auto configured = [&options, &info](bool incremental) {
+  const auto configured = [&options](bool incremental) {
     selection::LoopConfig c = selection::demoLoopConfig(incremental);
     c.selection.smoothing_window = options.smoothing_window;
     c.selection.dilation = options.dilation;
-    c.support.views = options.change_views ? info.change.minFrames() : 0;
-    c.support.min_points = options.change_view_min_points;
     c.confirm.enabled = incremental && options.carry_forward;
     c.keep_changed_views = incremental && options.free_space;
     c.free_space.place_radius_m = options.free_space_radius_m;
@@ -186,34 +186,31 @@ IncrementalResult runIncremental(vk::Context& context, const sim::World& world,
   };
   selection::SelectionLoop full(context, configured(false));
   selection::SelectionLoop incremental(context, configured(true));
+  selection::LoopTruth full_truth, incremental_truth;
   std::size_t total = 0, done = 0;
   for (const auto& s : sessions) total += 4 * s->size();
   ProgressBar progress("keyframe selection: complete + incremental", total, !quiet);
   for (const auto& s : sessions) {
-    for (selection::SelectionLoop* loop : {&full, &incremental}) {
+    for (auto [loop, truth] : {std::pair{&full, &full_truth}, {&incremental, &incremental_truth}}) {
       const std::size_t offset = done;
-      loop->addSession(s->session(), [&](std::size_t k) { progress.update(offset + k); });
+      truth->addSession(*loop, s->session(), [&](std::size_t k) { progress.update(offset + k); });
       done += 2 * s->size();
     }
   }
   progress.finish();
   IncrementalResult r;
   r.thresholds = full.thresholds();
-  r.methods = selection::evaluateMethods(full);
+  r.methods = selection::evaluateMethods(full, full_truth);
   r.agreement = selection::deviceReferenceAgreement(full);
   r.images = selection::imagesAfterFirstSession(incremental);
   r.images_per_session = selection::imagesPerSession(incremental);
-  r.change_views = incremental.config().support.views;
   for (const selection::SessionRun& run : incremental.sessions()) {
     if (run.session == 0) continue;
-    r.change_views_added += run.selection.supportCount();
-    r.vacated_points += run.support.points;
-    r.vacated_points_short += run.support.unsupported_after;
-    r.fused_confusion.add(selection::confusion(run.fused, run.truth));
+    r.fused_confusion.add(selection::confusion(run.fused, incremental_truth.truth(run.session)));
   }
-  r.coverage_complete = full.mapCoverage().ratio();
-  r.coverage_incremental = incremental.mapCoverage().ratio();
-  writeSessionFiles(incremental, sessions, out_dir, r.files);
+  r.coverage_complete = full_truth.mapCoverage(full).ratio();
+  r.coverage_incremental = incremental_truth.mapCoverage(incremental).ratio();
+  writeSessionFiles(incremental, incremental_truth, sessions, out_dir, r.files);
   r.objects_complete = complete.totals;
   r.arrivals_complete = change::arrivalCounts(world, complete);
   const change::WorldEvaluation on_selected =
@@ -238,12 +235,10 @@ std::string summarizeIncremental(const IncrementalResult& r) {
   std::snprintf(
       text, sizeof(text),
       "Keyframe selection (recall/precision/accuracy against the simulator's truth, sessions 1+): "
-      "ours %.1f/%.1f/%.1f %%, NCC %.1f/%.1f/%.1f %%, histogram %.1f/%.1f/%.1f %%; device and "
+      "reprojection %.1f/%.1f/%.1f %%, NCC %.1f/%.1f/%.1f %%, histogram %.1f/%.1f/%.1f %%; device and "
       "reference hit masks agree on %.3f %% of samples, surface checks on %.3f %%, %zu decisions "
       "differ. Incremental: fused "
-      "%zu of %zu keyframes after the first session (%.1f %%; per session %s %%; %zu of them "
-      "added as views of vacated places for change detection; fused keyframes against the "
-      "truth: %s), surface coverage %.2f %% vs "
+      "%zu of %zu keyframes after the first session (%.1f %%; per session %s %%; fused keyframes against the truth: %s), surface coverage %.2f %% vs "
       "%.2f %% fusing all; change detection on the fused keyframes (%zu voxels carried forward "
       "around %zu points the keyframes confirmed; free space from %zu vacated samples of %zu "
       "skipped keyframes, %zu of those samples shared among keyframes, and surfaces from %zu "
@@ -254,7 +249,7 @@ std::string summarizeIncremental(const IncrementalResult& r) {
       100 * ncc.precision(), 100 * ncc.accuracy(), 100 * hist.recall(), 100 * hist.precision(),
       100 * hist.accuracy(), 100 * r.agreement.hitAgreement(), 100 * r.agreement.surfaceAgreement(),
       r.agreement.decision_mismatches, r.images.fused, r.images.total, 100 * r.images.share(),
-      per_session.c_str(), r.change_views_added, r.fused_confusion.describe().c_str(),
+      per_session.c_str(), r.fused_confusion.describe().c_str(),
       100 * r.coverage_incremental, 100 * r.coverage_complete, r.carried.voxels, r.carried.points,
       r.free_space.samples, r.free_space.views, r.free_space_shared_samples,
       r.free_space.arrived_samples,

@@ -2,7 +2,7 @@
 // The incremental loop of keyframe selection inside `strata demo --incremental`: for each new session, select
 // its keyframes against the map built so far, fuse only the selected ones, and compare with fusing
 // everything: images used, surface coverage, keyframe-selection scores against the simulator's
-// truth (ours, NCC, histogram), device-vs-reference agreement, and change detection run
+// truth (reprojection, NCC, histogram), device-vs-reference agreement, and change detection run
 // on the selected keyframes only against the demo's complete run.
 #include <memory>
 #include <string>
@@ -12,7 +12,7 @@
 #include "change/carry_forward.h"
 #include "eval/evaluation_session.h"
 #include "eval/evaluation_world.h"
-#include "eval/selection_loop.h"
+#include "eval/selection_loop_truth.h"
 #include "eval/selection_report.h"
 
 namespace strata::apps {
@@ -29,23 +29,16 @@ struct InstanceOutcome {
 
 struct IncrementalResult {
   selection::Thresholds thresholds;
-  std::vector<selection::MethodResult> methods;  // ours, ncc, hist
+  std::vector<selection::MethodResult> methods;  // reproj, ncc, hist
   selection::DeviceReferenceAgreement agreement;
   selection::ImageUse images;                           // keyframes fused after the first session
   std::vector<selection::ImageUse> images_per_session;  // ... per session, 1 on
-  /// Of them, added as views for change detection (select/change_support.h), over the sessions:
-  /// the fused views each vacated point should have (0: step off), keyframes added, vacated points
-  /// of the keyframes, and those still short of views after.
-  int change_views = 0;
-  std::size_t change_views_added = 0;
-  std::size_t vacated_points = 0;
-  std::size_t vacated_points_short = 0;
   /// Observations carried forward into the sessions' change-detection layers around the points
   /// the keyframes confirmed (change/carry_forward.h), over the sessions.
   change::CarryStats carried;
   /// Free space the skipped keyframes saw through vacated places, integrated into the sessions'
-  /// change-detection layers from their vacated samples (change/carry_free.h), over the sessions;
-  /// free_space_pixels: all pixels of those keyframes, to put the depth kept in proportion.
+  /// change-detection layers from their vacated samples (change/skipped_keyframe_evidence.h),
+  /// over the sessions; free_space_pixels: all pixels of those keyframes, to put the depth kept in proportion.
   change::FreeSpaceStats free_space;
   std::size_t free_space_pixels = 0;
   std::size_t free_space_shared_samples = 0;  // of free_space.samples, shared among keyframes
@@ -70,19 +63,12 @@ struct IncrementalResult {
 struct IncrementalOptions {
   int smoothing_window = selection::demoLoopConfig(true).selection.smoothing_window;
   int dilation = selection::demoLoopConfig(true).selection.dilation;
-  /// Add the keyframes change detection needs to see vacated places in enough fused frames
-  /// (select/change_support.h). Off by default: free space from the skipped keyframes' vacated
-  /// samples does that without fusing them (office: 20 of 25 instances with 42.9 % of the images,
-  /// against 19 with 51.3 % by added views).
-  bool change_views = false;
-  /// A keyframe is added as a view only when it passes at least this many vacated points short of
-  /// views (SupportConfig::min_points).
-  int change_view_min_points = selection::SupportConfig{}.min_points;
   /// Carry the latest observations forward where keyframes confirmed the map, so change
   /// detection sees objects standing as before (change/carry_forward.h).
   bool carry_forward = true;
   /// Integrate what skipped keyframes saw change into change detection: the free space through
-  /// vacated places, from their vacated samples, and arrived surfaces (change/carry_free.h).
+  /// vacated places, from their vacated samples, and arrived surfaces
+  /// (change/skipped_keyframe_evidence.h).
   bool free_space = true;
   /// ... in the place within this radius of each vacated sample (metres).
   float free_space_radius_m = change::FreeSpaceConfig{}.place_radius_m;

@@ -75,10 +75,7 @@ std::string incrementalJson(const IncrementalResult& r) {
     out << (i > 0 ? ", " : "") << "{\"fused\": " << use.fused << ", \"total\": " << use.total
         << "}";
   }
-  out << "]}, \"change_views\": {\"views\": " << r.change_views
-      << ", \"added\": " << r.change_views_added << ", \"vacated_points\": " << r.vacated_points
-      << ", \"short_of_views\": " << r.vacated_points_short
-      << "}, \"carried_forward\": {\"confirmed_points\": " << r.carried.points
+  out << "]}, \"carried_forward\": {\"confirmed_points\": " << r.carried.points
       << ", \"voxels\": " << r.carried.voxels
       << "}, \"free_space\": {\"skipped_keyframes\": " << r.free_space.views
       << ", \"vacated_samples\": " << r.free_space.samples

@@ -21,7 +21,7 @@ void writeSelectionCsv(const std::string& path, const std::vector<ScoredKeyframe
   std::string text =
       "index,name,timestamp_s,coverage,color_change,depth_change_m,surface_change,ncc,histogram,"
       "coverage_smoothed,color_change_smoothed,depth_change_m_smoothed,surface_change_smoothed,"
-      "similarity_smoothed,triggered,selected,change_view";
+      "similarity_smoothed,triggered,selected";
   text += with_truth ? ",true_changed_fraction,true_unmapped_fraction,true_positive\n" : "\n";
   for (std::size_t i = 0; i < keyframes.size(); ++i) {
     const selection::KeyframeScore& k = keyframes[i].score;
@@ -29,11 +29,11 @@ void writeSelectionCsv(const std::string& path, const std::vector<ScoredKeyframe
     for (char& c : name) c = c == ',' || c == '\n' ? ' ' : c;  // keep the CSV parseable
     char line[512];
     std::snprintf(line, sizeof(line),
-                  "%zu,%s,%.6f,%.5f,%.5f,%.5f,%.5f,%.5f,%.5f,%.5f,%.5f,%.5f,%.5f,%.5f,%d,%d,%d\n",
+                  "%zu,%s,%.6f,%.5f,%.5f,%.5f,%.5f,%.5f,%.5f,%.5f,%.5f,%.5f,%.5f,%.5f,%d,%d\n",
                   i, name.c_str(), keyframes[i].timestamp_s, k.coverage, k.color_change,
                   k.depth_change_m, k.surface_change, k.ncc, k.histogram, s.coverage[i],
                   s.color_change[i], s.depth_change_m[i], s.surface_change[i], s.similarity[i],
-                  s.triggered[i], s.selected[i], i < s.support.size() ? s.support[i] : 0);
+                  s.triggered[i], s.selected[i]);
     text += line;
     if (with_truth) {
       const selection::KeyframeTruth& t = truth[i];

@@ -18,7 +18,6 @@ constexpr Rgb kAxis = {120, 120, 120};
 constexpr Rgb kCurve = {30, 90, 200};
 constexpr Rgb kThreshold = {210, 40, 40};
 constexpr Rgb kSelected = {40, 160, 70};
-constexpr Rgb kSupport = {235, 150, 40};  // added as views for change detection
 constexpr Rgb kTruePositive = {70, 70, 190};
 constexpr Rgb kText = {20, 20, 20};
 
@@ -91,7 +90,7 @@ std::vector<Panel> panelsOf(const selection::TrajectorySelection& s,
       return {{"NCC SIMILARITY", &s.similarity, t.ncc}};
     case selection::Method::kHistogram:
       return {{"HISTOGRAM CORRELATION", &s.similarity, t.histogram}};
-    case selection::Method::kOurs:
+    case selection::Method::kReprojection:
       break;
   }
   std::vector<Panel> panels = {{"COVERAGE", &s.coverage, t.coverage}};
@@ -126,25 +125,16 @@ ColorImage renderSelectionPlot(const selection::TrajectorySelection& s,
       std::max(1, (kWidth - 2 * kMargin) / static_cast<int>(2 * std::max<std::size_t>(n, 1)));
   for (std::size_t i = 0; i < n; ++i) {
     const int x = keyframeX(i, n);
-    const bool support = i < s.support.size() && s.support[i];
     fillRect(im, x - half, strip_top, x + half, strip_top + kStripHeight,
-             s.selected[i] ? kSelected
-             : support     ? kSupport
-                           : Rgb{225, 225, 225});
+             s.selected[i] ? kSelected : Rgb{225, 225, 225});
     if (with_truth) {
       fillRect(im, x - half, truth_top, x + half, truth_top + kStripHeight,
                truth[i] ? kTruePositive : Rgb{225, 225, 225});
     }
   }
   char caption[160];
-  if (s.supportCount() > 0) {
-    std::snprintf(caption, sizeof(caption),
-                  "%s: %zu OF %zu SELECTED (GREEN) + %zu FOR CHANGE DETECTION (ORANGE)",
-                  selection::methodName(config.method), s.selectedCount(), n, s.supportCount());
-  } else {
-    std::snprintf(caption, sizeof(caption), "%s: %zu OF %zu KEYFRAMES SELECTED (GREEN)",
-                  selection::methodName(config.method), s.selectedCount(), n);
-  }
+  std::snprintf(caption, sizeof(caption), "%s: %zu OF %zu KEYFRAMES SELECTED (GREEN)",
+                selection::methodName(config.method), s.selectedCount(), n);
   drawText(im, kMargin, caption_top, caption, 2, kText);
   drawText(im, kMargin, caption_top + 20,
            "RED DOTS: KEYFRAMES OVER A THRESHOLD (DASHED) BEFORE DILATION", 2, kText);

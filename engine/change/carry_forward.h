@@ -20,7 +20,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "change/carry_free.h"
+#include "change/skipped_keyframe_evidence.h"
 #include "map/tsdf_map.h"
 
 namespace strata::change {
@@ -40,8 +40,8 @@ struct CarryStats {
 /// Fills `session` (see the rule above). `latest` and `session` must have the same voxel size
 /// (InputError otherwise). Blocks are allocated in `session` where a voxel is carried. Voxels in
 /// *own (when non-null) are never carried into: the session has evidence of its own there below
-/// min_weight (free space seen through a vacated place, carry_free.h), and the latest observation
-/// is exactly what that evidence contradicts.
+/// min_weight (free space seen through a vacated place, skipped_keyframe_evidence.h), and the
+/// latest observation is exactly what that evidence contradicts.
 CarryStats carryObserved(const TsdfMap& latest, const std::vector<ConfirmedPoint>& points,
                          float min_weight, TsdfMap& session, const VoxelSet* own = nullptr);
 

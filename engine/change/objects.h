@@ -40,8 +40,8 @@ struct ObjectConfig {
   /// connectivity.
   float component_merge_gap_voxels = 3.0f;
   /// Components whose smallest / largest singular value of the centred vertex positions is below
-  /// this are planar (pieces of floor or wall: about 0.01 after fusion) and dropped. Higher also
-  /// drops objects seen mostly from one flat side (a shelf seen from its back panel: 0.04).
+  /// this are planar (pieces of floor or wall) and dropped. Higher also drops objects seen mostly
+  /// from one flat side (a shelf seen from its back panel).
   float min_singular_value_ratio = 0.02f;
   /// Components with fewer vertices are noise and dropped (100 vertices at 2 cm voxels are about
   /// 0.04 m^2 of surface).

@@ -26,7 +26,7 @@ void integrateVoxelReference(TsdfVoxel& voxel, const Eigen::Vector3f& p_W, const
                              const FrameCamera& camera, const MapConfig& config);
 
 /// integrateVoxelReference in two steps, for callers that look at one frame's observation before
-/// blending it (change/carry_free.h): what the frame says of the voxel, then the blend.
+/// blending it (change/skipped_keyframe_evidence.h): what the frame says of the voxel, then the blend.
 struct VoxelObservation {
   /// Measured depth beyond the voxel along its pixel's ray (the band test's distance); NaN where
   /// the voxel does not project into the image or its pixel has no valid depth.

@@ -91,9 +91,30 @@ SessionResult Mapper::endSession() {
   session_open_ = false;
   if (impl_->detector) {
     result.update = impl_->detector->endSession(result.session);
-    result.objects = change::sessionObjects(*impl_->detector, result.session, config_.objects);
+    if (config_.discover_objects) {
+      result.objects = change::sessionObjects(*impl_->detector, result.session, config_.objects);
+    }
   }
   return result;
+}
+
+SessionResult Mapper::addSessionMap(const TsdfMap& map) {
+  if (!impl_->detector) throw InputError("addSessionMap: change detection is off");
+  if (session_open_) throw InputError("addSessionMap: a session is open; end it first");
+  SessionResult result;
+  result.session = impl_->detector->addSessionMap(map);
+  ++sessions_;
+  result.update = impl_->detector->endSession(result.session);
+  if (config_.discover_objects) {
+    result.objects = change::sessionObjects(*impl_->detector, result.session, config_.objects);
+  }
+  impl_->esdf_fresh = false;  // S changed in every block the map holds
+  return result;
+}
+
+change::ChangeDetector& Mapper::changeDetector() {
+  if (!impl_->detector) throw InputError("changeDetector: change detection is off");
+  return *impl_->detector;
 }
 
 TsdfMap Mapper::staticMap() {
@@ -238,12 +259,18 @@ RaycastImage Mapper::render(const CameraIntrinsics& camera, const Eigen::Isometr
 
 KeyframeDecision Mapper::scoreKeyframe(const RgbdFrame& frame,
                                        const CameraIntrinsics& intrinsics) {
+  return scoreKeyframe(frame, intrinsics, static_cast<SampleRaycast*>(nullptr));
+}
+
+KeyframeDecision Mapper::scoreKeyframe(const RgbdFrame& frame, const CameraIntrinsics& intrinsics,
+                                       SampleRaycast* samples) {
   if (!impl_->scorer) {
     throw InputError("scoreKeyframe: keyframe scoring is off (MapperConfig::keyframe_scoring)");
   }
   impl_->scorer->setTsdfLayer(liveLayer());
   KeyframeDecision decision;
-  decision.score = impl_->scorer->score(deviceMap(), frame, intrinsics, &decision.device_ms);
+  decision.score =
+      impl_->scorer->score(deviceMap(), frame, intrinsics, &decision.device_ms, samples);
   decision.reason = selection::keyframeReason(decision.score, config_.keyframe_thresholds);
   decision.keyframe = !decision.reason.empty();
   if (!decision.keyframe) decision.reason = "map already explains the frame";

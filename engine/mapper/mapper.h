@@ -36,6 +36,9 @@
 #include "vk/vk.h"
 
 namespace strata {
+namespace change {
+class ChangeDetector;
+}
 
 /// What integrate() did to one frame.
 struct IntegrateStats {
@@ -115,6 +118,10 @@ class Mapper {
   /// Ends the open session: with change detection, merges it into the static estimate and
   /// returns the objects that moved. InputError when no session is open.
   SessionResult endSession();
+  /// With change detection on and no session open: a saved map (e.g. another day's) as the next
+  /// session, ended at once: merged into S, its objects discovered (discover_objects). Its voxel
+  /// size and truncation must match config.map's (InputError otherwise).
+  SessionResult addSessionMap(const TsdfMap& map);
   bool sessionOpen() const { return session_open_; }
   int sessionCount() const { return sessions_; }
   /// The static estimate S (host copy; with change detection, after the last endSession()).
@@ -125,6 +132,10 @@ class Mapper {
   KeyframeDecision scoreKeyframe(const RgbdFrame& frame, const CameraIntrinsics& intrinsics);
   KeyframeDecision scoreKeyframe(const RgbdFrame& frame, const CameraIntrinsics& intrinsics,
                                  const Eigen::Isometry3d& T_W_C);
+  /// The same, also returning the sample raycast the metrics came from (per-sample hits and
+  /// depths, for programs that compare the frame with the map sample by sample).
+  KeyframeDecision scoreKeyframe(const RgbdFrame& frame, const CameraIntrinsics& intrinsics,
+                                 SampleRaycast* samples);
 
   /// Host copy of the live layer (device -> host).
   TsdfMap download();
@@ -146,6 +157,10 @@ class Mapper {
   DeviceTsdfMap& deviceMap();
   /// TSDF layer of the device map integrate() writes now.
   int liveLayer() const;
+  /// The change detector that owns the layers (config.change_detection; InputError otherwise),
+  /// for work between integrate() and endSession() the facade does not wrap (editing a session's
+  /// layer, a session's own map and dynamic part).
+  change::ChangeDetector& changeDetector();
 
  private:
   struct Impl;

@@ -31,6 +31,10 @@ struct MapperConfig {
   change::ChangeConfig change;
   /// How a session's dynamic voxels become objects (change/objects.h).
   change::ObjectConfig objects;
+  /// endSession() discovers the session's objects against the static estimate as it ends. Off:
+  /// SessionResult::objects stays empty, for programs that discover them later against the
+  /// final static estimate (strata diff).
+  bool discover_objects = true;
 
   /// scoreKeyframe(): raycast-reprojection metrics of a frame against the map before it.
   bool keyframe_scoring = false;

@@ -37,8 +37,8 @@ bool triggeredOurs(const TrajectorySelection& s, std::size_t i, const Thresholds
 
 const char* methodName(Method method) {
   switch (method) {
-    case Method::kOurs:
-      return "ours";
+    case Method::kReprojection:
+      return "reproj";
     case Method::kNcc:
       return "ncc";
     case Method::kHistogram:
@@ -48,10 +48,10 @@ const char* methodName(Method method) {
 }
 
 Method parseMethod(const std::string& name) {
-  if (name == "ours") return Method::kOurs;
+  if (name == "reproj") return Method::kReprojection;
   if (name == "ncc") return Method::kNcc;
   if (name == "hist") return Method::kHistogram;
-  throw InputError("method '" + name + "': expected ours, ncc or hist");
+  throw InputError("method '" + name + "': expected reproj, ncc or hist");
 }
 
 void SelectionConfig::validate() const {
@@ -64,10 +64,6 @@ void SelectionConfig::validate() const {
 
 std::size_t TrajectorySelection::selectedCount() const {
   return static_cast<std::size_t>(std::count(selected.begin(), selected.end(), 1));
-}
-
-std::size_t TrajectorySelection::supportCount() const {
-  return static_cast<std::size_t>(std::count(support.begin(), support.end(), 1));
 }
 
 std::vector<double> movingAverage(const std::vector<double>& values, int window) {
@@ -102,7 +98,7 @@ TrajectorySelection selectKeyframes(const std::vector<KeyframeScore>& scores,
   s.triggered.assign(scores.size(), 0);
   for (std::size_t i = 0; i < scores.size(); ++i) {
     switch (config.method) {
-      case Method::kOurs:
+      case Method::kReprojection:
         s.triggered[i] = triggeredOurs(s, i, t);
         break;
       case Method::kNcc:
@@ -126,13 +122,13 @@ Thresholds autoThresholds(const std::vector<KeyframeScore>& first_session, int s
     config.method = m;
     return selectKeyframes(first_session, config);
   };
-  const TrajectorySelection ours = smoothed(Method::kOurs);
+  const TrajectorySelection reproj = smoothed(Method::kReprojection);
   const TrajectorySelection ncc = smoothed(Method::kNcc);
   const TrajectorySelection hist = smoothed(Method::kHistogram);
   Thresholds t = base;
-  t.coverage = *std::min_element(ours.coverage.begin(), ours.coverage.end());
-  t.depth_change_m = *std::max_element(ours.depth_change_m.begin(), ours.depth_change_m.end());
-  const double color = *std::max_element(ours.color_change.begin(), ours.color_change.end());
+  t.coverage = *std::min_element(reproj.coverage.begin(), reproj.coverage.end());
+  t.depth_change_m = *std::max_element(reproj.depth_change_m.begin(), reproj.depth_change_m.end());
+  const double color = *std::max_element(reproj.color_change.begin(), reproj.color_change.end());
   if (color > 0.0) {  // the session had colour
     t.color_change = color;
     t.ncc = *std::min_element(ncc.similarity.begin(), ncc.similarity.end());

@@ -11,12 +11,12 @@
 
 namespace strata::selection {
 
-/// Which metric decides: ours (coverage + colour change + depth change + surface change) or a
-/// baseline image similarity (normalised cross-correlation, histogram correlation), all on the same
-/// samples.
-enum class Method { kOurs, kNcc, kHistogram };
-const char* methodName(Method method);  // "ours", "ncc", "hist"
-/// InputError for anything but "ours", "ncc", "hist".
+/// Which metric decides: the raycast-reprojection metrics (coverage, colour change, depth change,
+/// surface change) or a baseline image similarity (normalised cross-correlation, histogram
+/// correlation), all on the same samples.
+enum class Method { kReprojection, kNcc, kHistogram };
+const char* methodName(Method method);  // "reproj", "ncc", "hist"
+/// InputError for anything but "reproj", "ncc", "hist".
 Method parseMethod(const std::string& name);
 
 struct Thresholds {
@@ -27,9 +27,8 @@ struct Thresholds {
   double color_change = 0.25;
   double depth_change_m = 0.05;
   /// Share of the measured samples the map may fail to hold before a keyframe is worth fusing:
-  /// 2 % is ~60 samples of the 10 px grid, an object of 0.35 m at 2.5 m. Not estimated from the
-  /// first session: against its own 5 cm map single keyframes miss up to ~9 % (thin parts the map
-  /// lost), and their maximum would hide most new space.
+  /// 2 % is ~60 samples of the 10 px grid, an object of 0.35 m at 2.5 m. autoThresholds does not
+  /// estimate it (it keeps base's value).
   double surface_change = 0.02;
   /// Baselines: select when the smoothed similarity < this.
   double ncc = 0.5;
@@ -37,7 +36,7 @@ struct Thresholds {
 };
 
 struct SelectionConfig {
-  Method method = Method::kOurs;
+  Method method = Method::kReprojection;
   /// Moving-average window along the trajectory, keyframes (odd; 1 = no smoothing). Wider rides
   /// out single noisy frames but blurs short events.
   int smoothing_window = 5;
@@ -58,11 +57,7 @@ struct TrajectorySelection {
   std::vector<double> similarity;       // smoothed baseline similarity (ncc or hist; 0 for ours)
   std::vector<std::uint8_t> triggered;  // crossed a threshold (before dilation)
   std::vector<std::uint8_t> selected;   // after dilation
-  /// Keyframes added as views for change detection (change_support.h), not selected on their own
-  /// metrics; empty where that step did not run. What is fused: selected or support.
-  std::vector<std::uint8_t> support;
   std::size_t selectedCount() const;
-  std::size_t supportCount() const;
 };
 
 /// Centred moving average; at the ends the window shrinks to the keyframes that exist.
@@ -78,8 +73,9 @@ std::string keyframeReason(const KeyframeScore& score, const Thresholds& thresho
 
 /// Thresholds from the first session against its own reconstruction: the largest smoothed change
 /// metrics and the smallest smoothed coverage / similarities it shows. Anything beyond what an
-/// unchanged, fully mapped session produces counts as change. Keeps `base` for metrics the session
-/// gives no value for (no colour: the colour thresholds stay as they were).
+/// unchanged, fully mapped session produces counts as change. Keeps `base` for surface_change and
+/// for metrics the session gives no value for (no colour: the colour thresholds stay as they were).
+/// InputError when `first_session` is empty.
 Thresholds autoThresholds(const std::vector<KeyframeScore>& first_session, int smoothing_window,
                           const Thresholds& base = {});
 

@@ -5,7 +5,7 @@
 namespace strata::selection {
 namespace {
 
-constexpr Method kMethods[] = {Method::kOurs, Method::kNcc, Method::kHistogram};
+constexpr Method kMethods[] = {Method::kReprojection, Method::kNcc, Method::kHistogram};
 
 std::vector<std::uint8_t> decide(const std::vector<KeyframeScore>& scores,
                                  const SelectionConfig& base, Method method,
@@ -18,7 +18,7 @@ std::vector<std::uint8_t> decide(const std::vector<KeyframeScore>& scores,
 
 }  // namespace
 
-std::vector<MethodResult> evaluateMethods(const SelectionLoop& loop) {
+std::vector<MethodResult> evaluateMethods(const SelectionLoop& loop, const LoopTruth& truth) {
   std::vector<MethodResult> out;
   for (Method method : kMethods) {
     MethodResult r;
@@ -26,7 +26,7 @@ std::vector<MethodResult> evaluateMethods(const SelectionLoop& loop) {
     for (const SessionRun& run : loop.sessions()) {
       if (run.session == 0) continue;
       const auto selected = decide(run.scores, loop.config().selection, method, loop.thresholds());
-      r.confusion.add(confusion(selected, run.truth));
+      r.confusion.add(confusion(selected, truth.truth(run.session)));
       for (auto s : selected) r.selected += s;
     }
     out.push_back(r);

@@ -1,23 +1,23 @@
 #pragma once
-// Results of a SelectionLoop run with truth: every method's confusion against the ground truth
+// Results of a SelectionLoop run with its LoopTruth: every method's confusion against the ground truth
 // (all methods decide from the same scores, each with its automatic threshold), and how well the
 // device and the host reference agree.
 #include <string>
 #include <vector>
 
 #include "eval/selection_eval.h"
-#include "eval/selection_loop.h"
+#include "eval/selection_loop_truth.h"
 
 namespace strata::selection {
 
 struct MethodResult {
-  Method method = Method::kOurs;
+  Method method = Method::kReprojection;
   Confusion confusion;  // keyframes of sessions >= 1
   std::size_t selected = 0;
 };
 
-/// Needs a loop run with_truth. Methods in the order ours, ncc, hist.
-std::vector<MethodResult> evaluateMethods(const SelectionLoop& loop);
+/// `truth`: recorded while `loop` ran. Methods in the order reprojection, ncc, hist.
+std::vector<MethodResult> evaluateMethods(const SelectionLoop& loop, const LoopTruth& truth);
 
 struct DeviceReferenceAgreement {
   std::size_t samples = 0;

@@ -14,14 +14,11 @@
 //  - unmapped: the map built so far does not hold the true surface point (exact depth from the
 //    true pose): its voxels there are unobserved (weight below min_weight, or no block), or their
 //    interpolated distance is more than `held_tolerance_voxels` (2) of the map's voxels from zero
-//    (observed only as free space, or a thin part the map lost). Counting any observed voxel as
-//    mapped left 75 of the office's 240 later keyframes negative although the map rendered
-//    through chairs they showed; a 5 cm tolerance on the 5 cm selection map made every keyframe of
-//    a room where one object moved per session positive (corners and chair legs a voxel off).
-// NOTE on 2 %: at 640x480 it is ~6,000 pixels, a 0.35 m object at 2.5 m. Smaller glimpses (an
-// object's corner at the image border) add little to the map and the neighbouring keyframes see
-// the change better; it is also ~60 samples of the 10 px grid, so a change above it is measurable.
-// Pixels are looked at on a grid (every `pixel_stride` px) for speed; the fraction is unbiased.
+//    (observed only as free space, or a thin part the map lost).
+// The 2 % default is ~6,000 pixels at 640x480, a 0.35 m object at 2.5 m, and ~60 samples of the
+// 10 px selection grid. Pixels are looked at on a grid (every `pixel_stride` px); the fraction is
+// unbiased. Frames: poses T_W_C take camera to world coordinates; lengths in metres. Thread safe
+// (pure functions on const inputs).
 #include <vector>
 
 #include "core/types.h"

@@ -8,7 +8,6 @@
 
 namespace strata {
 
-Dataset::~Dataset() = default;
 
 std::unique_ptr<Dataset> openDataset(const std::string& path, const DatasetOptions& options) {
   namespace fs = std::filesystem;

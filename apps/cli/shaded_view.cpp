@@ -1,4 +1,4 @@
-#include "cli/views.h"
+#include "cli/shaded_view.h"
 
 #include <algorithm>
 

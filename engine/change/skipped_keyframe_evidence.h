@@ -1,50 +1,34 @@
 #pragma once
 // What skipped keyframes saw change: free space through vacated places and the surfaces of
-// arrived objects.
-// When an object leaves, the keyframes that look through its old place measure beyond the map's
-// surface there. The change detector turns that place free in the static map only from
-// min_weight fused frames on; selection fuses few of those keyframes (a removed chair changes
-// few samples), so the object's earlier instances stay unsegmented. The selection's raycast has
-// already compared every keyframe's depth with the map on its sample grid: where a sample looks
-// beyond the surface, the keyframe saw free space around that surface. This step integrates that
-// free space into the session's change-detection layer, one observation per keyframe, as fusing
-// the keyframe would there, but only around its vacated samples, so a place turns free only where
-// min_weight keyframes saw through it.
+// arrived objects, integrated into a session's change-detection layer without fusing the images.
 //
-// The place, not only the samples: a removed thin object (a chair) gives few vacated samples;
-// most rays through its place miss it in the selection map (5 cm voxels keep little of a chair's
-// thin parts; an explanation, not measured). Office, session 3: the four skipped keyframes that
-// saw through a removed chair's place had 10, 3, 2 and 7 vacated samples on it; their depth
-// showed 571, 380, 277 and 605 of the 699 surface voxels free that a look at the samples' own
-// 10 px cells (and one cell around) had left unobserved. The vacated samples are therefore seeds:
-// the place is what the last observations (the change layers' finer map) hold around them, and
-// the keyframe's full-resolution depth is kept, and tested pixel by pixel, where that place can
-// project.
+// The selection's raycast has compared each keyframe's depth with the map on its sample grid. A
+// vacated sample looks beyond the map's surface (something left); an arrived sample measures a
+// surface in front of the map's, or where its ray meets none (something arrived). Vacated samples
+// are seeds: the place is what the last observations (`place`, the change layers' map) hold
+// around them, and the keyframe's full-resolution depth is kept, and tested pixel by pixel, where
+// that place can project (keepDepthAround).
 //
-// Rule, per view (one skipped keyframe) and per voxel, at most once per view: the voxel lies
-// within place_radius_m of one of the view's vacated samples (the map's surface point on its ray)
-// and holds something in `place` (weight > 0 and tsdf below the truncation distance: a surface or
-// an object's inside, as last observed). It then takes the update fusing the keyframe would give
-// it (integrateVoxelReference, with the normals of the kept depth and no colour): a free
-// observation where its pixel measures at least the truncation distance beyond it, the surface's
-// distance where it measures the surface, nothing where the pixel's depth was not kept or the
-// voxel lies more than the truncation distance behind what it measures. The surface observations
-// matter as much as the free ones: free space alone would wear away every static surface of the
-// place seen at a grazing angle or across a depth edge (office, 240 keyframes per session: 2 false
-// segments of 39). Free space where nothing was last observed is left out: no earlier instance
-// can stand there, and it would only allocate.
+// Vacated places, per view (one skipped keyframe) and per voxel, at most once per view: the voxel
+// lies within place_radius_m of one of the view's vacated samples (the map's surface point on its
+// ray) and holds something in `place` (weight > 0 and tsdf below the truncation distance: a
+// surface or an object's inside, as last observed). It then takes the update fusing the keyframe
+// would give it (integrateVoxelReference, with the normals of the kept depth and no colour): a
+// free observation where its pixel measures at least the truncation distance beyond it, the
+// surface's distance where it measures the surface, nothing where the pixel's depth was not kept
+// or the voxel lies more than the truncation distance behind what it measures. Surface
+// observations are integrated with the free ones so that static surfaces of the place seen at a
+// grazing angle or across a depth edge are not worn away. Free space where nothing was last
+// observed is left out: no earlier instance can stand there, and it would only allocate. A place
+// thus turns free in the static map only where min_weight views saw through it.
 //
-// Arrivals, the other half: an object that arrives is selected for only where it changes a
-// keyframe's score enough, and a small one does not (office, 120 keyframes per session: an
-// archive box moved in session 2 was seen by 12 keyframes, 2 of them fused; never found). A
-// sample that measures a surface in front of the map's (or where its ray meets none) is an
-// arrived sample; its surface lies where it measures it, so the kept depth is its cell and
-// arrived_ring_cells around, and the voxels within reach of that square (and the truncation band)
-// take the same whole update, once per view, unless it is free space where nothing was held or
-// last observed. Office, 120 keyframes: every instance 25 of 31 and arrivals 9 of 11, equal to
-// fusing every keyframe, reading 25.9 % of the skipped keyframes' depth pixels (without arrivals,
-// free observations counted as own evidence: 23 and 8, reading 19.6 %).
-// Thread safe (pure functions).
+// Arrivals, per view and per voxel, at most once per view: an arrived surface lies where its
+// samples measure it, so the kept depth is each arrived sample's cell and arrived_ring_cells
+// around it; the voxels within reach of that square (and the truncation band) take the same whole
+// update, unless it is free space where nothing was held or last observed.
+//
+// Lengths in metres, image coordinates in pixels; poses T_W_C take camera to world coordinates,
+// points are in the world frame. Thread safe (pure functions).
 #include <Eigen/Geometry>
 #include <cstddef>
 #include <cstdint>
@@ -104,10 +88,8 @@ struct ChangedView {
 struct FreeSpaceConfig {
   /// Side of a sample's cell (the sample grid's stride) and of the kept depth's tiles.
   int cell_px = 10;
-  /// Radius of the place around each vacated sample: about an office chair's half size. Office,
-  /// 60 keyframes per session (free observations only, carry-forward radius 0.75 spacings):
-  /// 0.3 m finds 20 of 25 instances reading 17 % of the skipped keyframes' depth pixels; 0.5 m
-  /// the same 20 with 31 %.
+  /// Radius of the place around each vacated sample, metres, in (0, 2]: about an office chair's
+  /// half size.
   float place_radius_m = 0.3f;
   /// Cells kept around an arrived sample's own, on each side: an arrived surface lies where its
   /// samples measure it, so the cells between neighbouring samples cover it (0: arrivals off).
@@ -145,10 +127,8 @@ void keepDepthAround(const DepthImage& depth, const CameraIntrinsics& intrinsics
 /// them on the other side of a surface than `place` does (free where it holds an inside, inside
 /// where it holds free space or nothing): the session's own evidence against the last
 /// observations, which carry_forward.h does not carry into. A voxel whose observation agrees with
-/// the last one may be carried (office, 120 keyframes per session: counting every place voxel that
-/// took an observation as own evidence kept the printer, standing as before beside a place vacated
-/// a session earlier, from being carried forward; lost in session 4). Blocks are allocated in
-/// `session` where a voxel is updated.
+/// the last one is not own evidence and may still be carried. Blocks are allocated in `session`
+/// where a voxel is updated.
 FreeSpaceStats integrateChangedPlaces(const std::vector<ChangedView>& views,
                                       const CameraIntrinsics& intrinsics,
                                       const FreeSpaceConfig& config, const TsdfMap& place,

@@ -1,4 +1,4 @@
-#include "change/carry_free.h"
+#include "change/skipped_keyframe_evidence.h"
 
 #include <algorithm>
 #include <cmath>

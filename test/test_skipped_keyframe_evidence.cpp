@@ -1,4 +1,4 @@
-// Free space from skipped keyframes' vacated samples (change/carry_free.h): the update agrees with
+// Free space from skipped keyframes' vacated samples (change/skipped_keyframe_evidence.h): the update agrees with
 // fusing the keyframe where it applies and with the true geometry, counts once per view, leaves
 // carried-forward values out where the session has its own evidence, survives bad input, and lets
 // the reference detector segment an object's earlier instance from three unfused views of its

@@ -1,14 +1,14 @@
-// Views of vacated places for change detection (select/change_support.h): the vacated points of a
-// keyframe's samples, which keyframes' rays pass a point, the greedy choice of the keyframes that
-// give points short of views their rays, and bad input. Also the points a keyframe confirmed
-// (select/confirmed_points.h). Constructed frames: cameras looking along
-// +z at a wall 2 m away, side by side along x.
+// The changed views of skipped keyframes (select/changed_views.h): the samples that look beyond
+// the map (vacated) or measure something new in front of it (arrived), the depth kept around
+// them, vacated places shared among keyframes, which rays pass a point, and bad input. Also the
+// points a keyframe confirmed (select/confirmed_points.h). Constructed frames: cameras looking
+// along +z at a wall 2 m away, side by side along x.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "core/error.h"
-#include "select/change_support.h"
+#include "select/changed_views.h"
 #include "select/confirmed_points.h"
 
 namespace strata::selection {
@@ -35,15 +35,8 @@ RgbdFrame wallFrame(double x_m, bool facing_wall = true) {
   return f;
 }
 
-/// `n` points 0.5 m in front of the wall around x = `x_m`: where a removed object stood.
-std::vector<Eigen::Vector3f> vacated(float x_m, int n) {
-  std::vector<Eigen::Vector3f> points;
-  for (int i = 0; i < n; ++i) points.emplace_back(x_m + 0.01f * (i % 10), 0.01f * (i / 10), 1.5f);
-  return points;
-}
-
-TEST(ChangeSupport, VacatedPointsAreTheMapsSurfaceWhereTheKeyframeSeesBeyondIt) {
-  const SupportConfig config;
+TEST(ChangedViews, VacatedSamplesAreWhereTheKeyframeSeesBeyondTheMapsSurface) {
+  const ChangedViewConfig config;
   const RgbdFrame frame = wallFrame(0.0);  // measures the wall at 2 m everywhere
   SampleRaycast samples;
   samples.grid = SampleGrid::of(camera(), 40);  // 4 x 3 samples
@@ -53,18 +46,25 @@ TEST(ChangeSupport, VacatedPointsAreTheMapsSurfaceWhereTheKeyframeSeesBeyondIt) 
   samples.depth_m[5] = 1.5f;        // ... and, on two samples, an object in front of it
   samples.depth_m[6] = 1.95f;       // (this one within the tolerance: noise, not vacated)
   samples.hit[7] = 0, samples.depth_m[7] = 0.0f;  // a miss is new space, not a vacated place
-  const std::vector<Eigen::Vector3f> points = vacatedPoints(samples, frame, camera(), config);
-  ASSERT_EQ(points.size(), 1u);
-  EXPECT_NEAR(points[0].z(), 1.5f, 1e-5f);  // on the map's surface, on sample 5's ray
+  const change::ChangedView view = changedView(samples, frame, config);
+  ASSERT_EQ(view.samples.size(), 1u);
   const SampleGrid& g = samples.grid;
+  EXPECT_EQ(view.samples[0].u_px, g.pixelU(5 % g.width));
+  EXPECT_EQ(view.samples[0].v_px, g.pixelV(5 / g.width));
+  EXPECT_FLOAT_EQ(view.samples[0].surface_m, 1.5f);  // the map's surface on its ray
+  ASSERT_EQ(view.arrived.size(), 1u) << "the miss where the keyframe measures the wall";
+  EXPECT_EQ(view.arrived[0].u_px, g.pixelU(7 % g.width));
+  const std::vector<Eigen::Vector3f> points = change::samplePoints(view, camera());
+  ASSERT_EQ(points.size(), 1u);
+  EXPECT_NEAR(points[0].z(), 1.5f, 1e-5f);
   const float u = static_cast<float>(g.pixelU(5 % g.width)), v = g.pixelV(5 / g.width);
   EXPECT_NEAR(points[0].x(), (u - camera().cx_px) / camera().fx_px * 1.5f, 1e-5f);
   EXPECT_NEAR(points[0].y(), (v - camera().cy_px) / camera().fy_px * 1.5f, 1e-5f);
   EXPECT_TRUE(passesPoint(frame, camera(), points[0], config));
 }
 
-TEST(ChangeSupport, AVacatedViewKeepsTheSampleAndTheDepthAroundIt) {
-  const SupportConfig config;
+TEST(ChangedViews, AVacatedViewKeepsTheSampleAndTheDepthAroundIt) {
+  const ChangedViewConfig config;
   RgbdFrame frame = wallFrame(0.0);
   for (int v = 0; v < camera().height_px; ++v) {
     for (int u = 0; u < camera().width_px; ++u)
@@ -100,8 +100,8 @@ TEST(ChangeSupport, AVacatedViewKeepsTheSampleAndTheDepthAroundIt) {
   }
 }
 
-TEST(ChangeSupport, AViewKeepsTheSamplesThatMeasureSomethingNewInFrontOfTheMap) {
-  const SupportConfig config;
+TEST(ChangedViews, AViewKeepsTheSamplesThatMeasureSomethingNewInFrontOfTheMap) {
+  const ChangedViewConfig config;
   RgbdFrame frame = wallFrame(0.0);  // the wall at 2 m, as the map holds it
   SampleRaycast samples;
   samples.grid = SampleGrid::of(camera(), 40);  // 4 x 3 samples, cells of 40 px
@@ -147,8 +147,8 @@ TEST(ChangeSupport, AViewKeepsTheSamplesThatMeasureSomethingNewInFrontOfTheMap) 
   }
 }
 
-TEST(ChangeSupport, SkippedKeyframesTakeTheVacatedPlacesTheyLookThrough) {
-  const SupportConfig config;
+TEST(ChangedViews, SkippedKeyframesTakeTheVacatedPlacesTheyLookThrough) {
+  const ChangedViewConfig config;
   const CameraIntrinsics k = camera();
   // Keyframe 0 found a vacated place: at pixel (60, 60) the map's surface stood at 1.5 m, in
   // front of the wall it measures at 2 m. Keyframe 1 (0.3 m to the side) looks through that
@@ -190,30 +190,8 @@ TEST(ChangeSupport, SkippedKeyframesTakeTheVacatedPlacesTheyLookThrough) {
   EXPECT_THROW(shareVacatedPlaces(again, frames, {1, 1, 1, 1}, k, config, 0), InputError);
 }
 
-TEST(ChangeSupport, MinNeighboursKeepsAreasAndDropsLoneSamples) {
-  const RgbdFrame frame = wallFrame(0.0);
-  SampleRaycast samples;
-  samples.grid = SampleGrid::of(camera(), 10);  // 16 x 12 samples
-  const SampleGrid& g = samples.grid;
-  const std::size_t n = g.count();
-  samples.hit.assign(n, 1);
-  samples.depth_m.assign(n, 2.0f);
-  for (int gy = 2; gy <= 4; ++gy) {  // a 3 x 3 area in front of the wall: a vacated place
-    for (int gx = 2; gx <= 4; ++gx) samples.depth_m[gy * g.width + gx] = 1.5f;
-  }
-  samples.depth_m[9 * g.width + 12] = 1.5f;  // a lone sample
-  SupportConfig config;
-  EXPECT_EQ(vacatedPoints(samples, frame, camera(), config).size(), 10u);
-  config.min_neighbours = 3;  // corners of the area have 3, edges 5, the centre 8
-  EXPECT_EQ(vacatedPoints(samples, frame, camera(), config).size(), 9u);
-  config.min_neighbours = 4;
-  EXPECT_EQ(vacatedPoints(samples, frame, camera(), config).size(), 5u);
-  config.min_neighbours = 9;
-  EXPECT_THROW(config.validate(), InputError);
-}
-
-TEST(ChangeSupport, AKeyframePassesAPointWhenItMeasuresBeyondIt) {
-  const SupportConfig config;
+TEST(ChangedViews, AKeyframePassesAPointWhenItMeasuresBeyondIt) {
+  const ChangedViewConfig config;
   const RgbdFrame frame = wallFrame(0.0);
   EXPECT_TRUE(passesPoint(frame, camera(), {0.1f, 0.1f, 1.5f}, config));    // wall behind it
   EXPECT_FALSE(passesPoint(frame, camera(), {0.1f, 0.1f, 1.95f}, config));  // within tolerance
@@ -228,93 +206,22 @@ TEST(ChangeSupport, AKeyframePassesAPointWhenItMeasuresBeyondIt) {
   EXPECT_FALSE(passesPoint(far, camera(), {0.1f, 0.1f, 1.5f}, config));
 }
 
-TEST(ChangeSupport, AddsTheKeyframesThatPassTheVacatedPlaceUntilItHasItsViews) {
-  // Keyframe 0 (selected) saw 100 vacated points at x = 0; keyframes 1-3 pass them too, 4 and 5
-  // look the other way.
-  const std::vector<RgbdFrame> frames = {wallFrame(0.0),        wallFrame(0.1),
-                                         wallFrame(0.2),        wallFrame(0.3),
-                                         wallFrame(0.0, false), wallFrame(0.1, false)};
-  std::vector<std::vector<Eigen::Vector3f>> points(frames.size());
-  points[0] = vacated(0.0f, 100);
-  points[2] = vacated(0.5f, 100);  // not selected: its points are not the selection's
-  const std::vector<std::uint8_t> selected = {1, 0, 0, 0, 0, 0};
-  SupportConfig config;
-  config.views = 3;
-  config.all_keyframes = false;
-  const SupportResult r = supportViews(points, frames, camera(), selected, config);
-  EXPECT_EQ(r.points, 100u);
-  EXPECT_EQ(r.unsupported_before, 100u);
-  EXPECT_EQ(r.unsupported_after, 0u);
-  int added = 0;
-  for (auto a : r.added) added += a;
-  EXPECT_EQ(added, 2);  // two more views, no more
-  EXPECT_EQ(r.added[0], 0);
-  EXPECT_EQ(r.added[4] + r.added[5], 0);
-
-  config.views = 5;  // only three keyframes besides keyframe 0 can pass it
-  const SupportResult all = supportViews(points, frames, camera(), selected, config);
-  EXPECT_EQ(all.added, (std::vector<std::uint8_t>{0, 1, 1, 1, 0, 0}));
-  EXPECT_EQ(all.unsupported_after, 100u);
-
-  config.views = 3;
-  config.min_points = 101;  // no keyframe passes enough points
-  const SupportResult none = supportViews(points, frames, camera(), selected, config);
-  EXPECT_EQ(none.added, std::vector<std::uint8_t>(frames.size(), 0));
-  EXPECT_EQ(none.unsupported_after, 100u);
-
-  config.min_points = 30;
-  config.views = 0;  // off
-  const SupportResult off = supportViews(points, frames, camera(), selected, config);
-  EXPECT_EQ(off.added, std::vector<std::uint8_t>(frames.size(), 0));
-}
-
-TEST(ChangeSupport, WithAllKeyframesTheVacatedPointsOfUnselectedOnesCountToo) {
-  // As above, but keyframe 2's points (a place no selected keyframe measured beyond) count: the
-  // views added then serve both places.
-  const std::vector<RgbdFrame> frames = {wallFrame(0.0), wallFrame(0.1), wallFrame(0.2),
-                                         wallFrame(0.3), wallFrame(0.0, false)};
-  std::vector<std::vector<Eigen::Vector3f>> points(frames.size());
-  points[0] = vacated(0.0f, 100);
-  points[2] = vacated(0.5f, 100);
-  const std::vector<std::uint8_t> selected = {1, 0, 0, 0, 0};
-  SupportConfig config;
-  config.views = 3;
-  ASSERT_TRUE(config.all_keyframes);  // the default
-  const SupportResult r = supportViews(points, frames, camera(), selected, config);
-  EXPECT_EQ(r.points, 200u);
-  EXPECT_EQ(r.unsupported_before, 200u);
-  EXPECT_EQ(r.unsupported_after, 0u);
-  EXPECT_EQ(r.added[1] + r.added[2] + r.added[3], 2);
-  EXPECT_EQ(r.added[0] + r.added[4], 0);
-  // Only keyframe 2's place: it is short of views although no keyframe was selected for it.
-  points[0].clear();
-  const SupportResult unselected = supportViews(points, frames, camera(), selected, config);
-  EXPECT_EQ(unselected.points, 100u);
-  EXPECT_EQ(unselected.unsupported_after, 0u);
-  config.all_keyframes = false;
-  EXPECT_EQ(supportViews(points, frames, camera(), selected, config).points, 0u);
-}
-
-TEST(ChangeSupport, BadInputNamesTheProblem) {
-  const std::vector<RgbdFrame> frames = {wallFrame(0.0)};
-  SupportConfig config;
-  try {
-    supportViews({}, frames, camera(), {1}, config);
-    ADD_FAILURE() << "lengths differ";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("differ in length"), std::string::npos) << e.what();
-  }
-  config.views = -1;
-  EXPECT_THROW(config.validate(), InputError);
-  config = {};
-  config.min_points = 0;
-  EXPECT_THROW(config.validate(), InputError);
-  config = {};
+TEST(ChangedViews, BadInputNamesTheProblem) {
+  ChangedViewConfig config;
   config.depth_tolerance_m = std::nanf("");
   EXPECT_THROW(config.validate(), InputError);
   config = {};
   config.max_depth_m = 0.05f;
   EXPECT_THROW(config.validate(), InputError);
+  config = {};
+  const std::vector<RgbdFrame> frames = {wallFrame(0.0)};
+  std::vector<change::ChangedView> views(2);
+  try {
+    shareVacatedPlaces(views, frames, {1}, camera(), config, 10);
+    ADD_FAILURE() << "lengths differ";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("one each per keyframe"), std::string::npos) << e.what();
+  }
 }
 
 TEST(ConfirmedPoints, AreTheMeasuredPointsTheMapHoldsWhereItsSurfaceIsAtTheMeasuredDepth) {

@@ -1,0 +1,7 @@
+#include "core/dataset.h"
+
+namespace strata {
+
+Dataset::~Dataset() = default;
+
+}  // namespace strata
