@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <algorithm>
+#include <iterator>
 #include <limits>
 
 #include "core/error.h"
@@ -51,6 +52,21 @@ void expectDeviceMatchesReference(const TsdfMap& device, const TsdfMap& referenc
       << diff.weight_mismatches << " of " << diff.updated_voxels << " weights differ";
 }
 
+bool blockLess(const BlockIndex& a, const BlockIndex& b) {
+  if (a.z() != b.z()) return a.z() < b.z();
+  if (a.y() != b.y()) return a.y() < b.y();
+  return a.x() < b.x();
+}
+
+/// Blocks of `band` (sorted) missing from `allocated` (sorted).
+std::size_t missingFrom(const std::vector<BlockIndex>& band,
+                        const std::vector<BlockIndex>& allocated) {
+  std::vector<BlockIndex> missing;
+  std::set_difference(band.begin(), band.end(), allocated.begin(), allocated.end(),
+                      std::back_inserter(missing), blockLess);
+  return missing.size();
+}
+
 class BlockAllocation : public ::testing::TestWithParam<bool> {};
 
 TEST_P(BlockAllocation, DeviceListsExactlyTheReferenceBlocks) {
@@ -60,7 +76,7 @@ TEST_P(BlockAllocation, DeviceListsExactlyTheReferenceBlocks) {
   config.allocate_free_space = GetParam();
   DeviceFusion fusion(test::sharedContext(), config);
   const FrameStats stats = fusion.integrate(frame, dataset.intrinsics());
-  const auto reference = touchedBlocksReference(
+  const auto reference = allocatedBlocksReference(
       frame.depth, FrameCamera::from(dataset.intrinsics(), frame.T_W_C), config);
   EXPECT_EQ(stats.touched_blocks, reference.size());
   TsdfMap map(config);
@@ -71,6 +87,67 @@ TEST_P(BlockAllocation, DeviceListsExactlyTheReferenceBlocks) {
 
 INSTANTIATE_TEST_SUITE_P(BandAndFreeSpace, BlockAllocation, ::testing::Bool());
 
+// The tile slabs must cover every block a per-pixel march of the truncation band crosses, and
+// should not cost many more blocks than it.
+void expectSupersetOfTheBand(const DepthImage& depth, const FrameCamera& camera,
+                             const MapConfig& config, double max_extra_share) {
+  const auto band = bandBlocksReference(depth, camera, config);
+  const auto allocated = allocatedBlocksReference(depth, camera, config);
+  ASSERT_FALSE(band.empty());
+  EXPECT_EQ(missingFrom(band, allocated), 0u)
+      << "of " << band.size() << " band blocks at " << config.voxel_size_m << " m voxels";
+  EXPECT_LE(static_cast<double>(allocated.size()), band.size() * (1.0 + max_extra_share))
+      << allocated.size() << " allocated for " << band.size() << " band blocks";
+}
+
+TEST(BlockAllocationSlabs, CoverTheBandOfAnalyticFrames) {
+  const auto dataset = analyticDataset(4);
+  for (const float voxel_m : {0.01f, 0.02f, 0.05f}) {
+    for (const bool free_space : {false, true}) {
+      MapConfig config;
+      config.voxel_size_m = voxel_m;
+      config.allocate_free_space = free_space;
+      for (std::size_t i = 0; i < dataset.size(); ++i) {
+        const RgbdFrame frame = dataset.load(i);
+        expectSupersetOfTheBand(frame.depth, FrameCamera::from(dataset.intrinsics(), frame.T_W_C),
+                                config, 0.6);
+      }
+    }
+  }
+}
+
+TEST(BlockAllocationSlabs, CoverTheBandOfRealKitchenFrames) {
+  STRATA_REQUIRE_DATA("redkitchen", path);
+  const auto dataset = openDataset(path);
+  for (const float voxel_m : {0.01f, 0.02f, 0.05f}) {
+    MapConfig config;
+    config.voxel_size_m = voxel_m;
+    for (std::size_t i = 0; i < dataset->size(); i += 50) {
+      const RgbdFrame frame = dataset->load(i);
+      expectSupersetOfTheBand(frame.depth, FrameCamera::from(dataset->intrinsics(), frame.T_W_C),
+                              config, 0.6);
+    }
+  }
+}
+
+TEST(BlockAllocationSlabs, DeviceMatchesTheReferenceOnARealFrame) {
+  STRATA_REQUIRE_DATA("redkitchen", path);
+  const auto dataset = openDataset(path);
+  const RgbdFrame frame = dataset->load(20);
+  MapConfig config;
+  DeviceFusion fusion(test::sharedContext(), config);
+  const FrameStats stats = fusion.integrate(frame, dataset->intrinsics());
+  const auto reference = allocatedBlocksReference(
+      frame.depth, FrameCamera::from(dataset->intrinsics(), frame.T_W_C), config);
+  EXPECT_EQ(stats.touched_blocks, reference.size());
+  TsdfMap map(config);
+  fusion.map().download(map);
+  EXPECT_EQ(map.blockCount(), reference.size());
+  std::size_t missing = 0;
+  for (const BlockIndex& b : reference) missing += map.findBlock(b) == nullptr ? 1 : 0;
+  EXPECT_EQ(missing, 0u);
+}
+
 TEST(BlockAllocationFreeSpace, CoversTheSpaceInFrontOfSurfaces) {
   const auto dataset = analyticDataset(1);
   const RgbdFrame frame = dataset.load(0);
@@ -78,19 +155,14 @@ TEST(BlockAllocationFreeSpace, CoversTheSpaceInFrontOfSurfaces) {
   MapConfig free = band;
   free.allocate_free_space = true;
   const FrameCamera camera = FrameCamera::from(dataset.intrinsics(), frame.T_W_C);
-  const auto band_blocks = touchedBlocksReference(frame.depth, camera, band);
-  const auto free_blocks = touchedBlocksReference(frame.depth, camera, free);
+  const auto band_blocks = allocatedBlocksReference(frame.depth, camera, band);
+  const auto free_blocks = allocatedBlocksReference(frame.depth, camera, free);
   EXPECT_GT(free_blocks.size(), 2 * band_blocks.size());
   // The block half-way between the camera and the surface at the image centre is allocated.
   const float depth = frame.depth.at(320, 240);
   const Eigen::Vector3d mid_W = frame.T_W_C * Eigen::Vector3d(0, 0, 0.5 * depth);
   const BlockIndex mid = (mid_W.cast<float>() / free.blockSize()).array().floor().cast<int>();
-  EXPECT_TRUE(std::binary_search(free_blocks.begin(), free_blocks.end(), mid,
-                                 [](const BlockIndex& a, const BlockIndex& b) {
-                                   if (a.z() != b.z()) return a.z() < b.z();
-                                   if (a.y() != b.y()) return a.y() < b.y();
-                                   return a.x() < b.x();
-                                 }));
+  EXPECT_TRUE(std::binary_search(free_blocks.begin(), free_blocks.end(), mid, blockLess));
 }
 
 TEST(BlockAllocationGrowth, TableAndPoolGrowWithoutDroppingBlocks) {
@@ -277,14 +349,26 @@ namespace {
 TEST(TsdfIntegration, FullPoolStopsWithAClearErrorAndKeepsTheMap) {
   const auto dataset = analyticDataset(60);
   MapConfig config;
-  config.max_block_capacity = 1200;  // frame 0 needs about 1000 blocks, frames 0 + 40 more
+  // A budget that frame 0 fits in and frames 0 + 40 together do not.
+  const auto blocksOf = [&](std::size_t i) {
+    const RgbdFrame frame = dataset.load(i);
+    return allocatedBlocksReference(frame.depth,
+                                    FrameCamera::from(dataset.intrinsics(), frame.T_W_C), config);
+  };
+  const auto first = blocksOf(0);
+  const auto later = blocksOf(40);
+  std::vector<BlockIndex> both;
+  std::set_union(first.begin(), first.end(), later.begin(), later.end(), std::back_inserter(both),
+                 blockLess);
+  config.max_block_capacity = static_cast<std::uint32_t>(first.size() + first.size() / 8);
+  ASSERT_GT(both.size(), config.max_block_capacity);
   DeviceFusion fusion(test::sharedContext(), config);
   fusion.integrate(dataset.load(0), dataset.intrinsics());
   TsdfMap before(config);
   fusion.map().download(before);
   try {
     fusion.integrate(dataset.load(40), dataset.intrinsics());
-    FAIL() << "the frame should not fit in 1200 blocks";
+    FAIL() << "the frame should not fit in " << config.max_block_capacity << " blocks";
   } catch (const DeviceError& e) {
     EXPECT_NE(std::string(e.what()).find("blocks were asked for"), std::string::npos) << e.what();
   }

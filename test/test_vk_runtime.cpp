@@ -118,6 +118,37 @@ TEST(VkRuntime, SmokeAddMatchesCpuExactly) {
   EXPECT_GE(ticks[1], ticks[0]);
 }
 
+// The path of a discrete GPU, on any device: device-local memory is never mapped, so copies go
+// through the context's persistent staging buffers (kept across calls).
+TEST(VkRuntime, StagedMemoryNeverMapsDeviceLocalBuffers) {
+  ContextOptions options;
+  options.staged_memory = true;
+  auto context = Context::create(options);
+  EXPECT_TRUE(context->stagedMemory());
+  EXPECT_NE(context->describe().find("staged"), std::string::npos);
+  std::vector<std::uint32_t> data(1000);
+  std::iota(data.begin(), data.end(), 3u);
+  Buffer device = Buffer::create(*context, data.size() * 4, MemoryUsage::kDeviceLocal, "device");
+  EXPECT_EQ(BufferAccess::hostView(device), nullptr);
+  upload(*context, device, data.data(), data.size() * 4);
+  const std::uint64_t after_first = context->allocatedBytes();
+  upload(*context, device, data.data(), data.size() * 4);
+  EXPECT_EQ(context->allocatedBytes(), after_first) << "the staging buffer is kept, not remade";
+  std::vector<std::uint32_t> back(data.size(), 0);
+  download(*context, device, back.data(), back.size() * 4);
+  EXPECT_EQ(back, data);
+}
+
+TEST(VkRuntime, UnknownDeviceMemoryModeIsRefused) {
+  ScopedEnv env("STRATA_DEVICE_MEMORY", "stagged");
+  try {
+    Context::create();
+    FAIL() << "a misspelt memory mode must not fall back silently";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("STRATA_DEVICE_MEMORY"), std::string::npos) << e.what();
+  }
+}
+
 TEST(VkRuntime, StagedAndDirectCopiesRoundTrip) {
   auto context = Context::create();
   constexpr std::size_t kWords = 4096;

@@ -5,49 +5,101 @@
 #include <cstring>
 
 #include "core/error.h"
+#include "integrate/block_allocation.h"
 
 namespace strata {
 namespace {
 
-constexpr std::uint32_t kMaxGroupsPerDimension = 65535;
+constexpr std::uint32_t kMinTouchedCapacity = 4096;
+// Pool headroom kept ahead of each frame, in touched blocks of the previous frame: a frame
+// rarely allocates more new blocks than the last one touched.
+constexpr std::uint32_t kMinReserveBlocks = 4096;
+constexpr VkDeviceSize kGatherArgsOffset = 16;  // integrate_args.comp: args[4..6]
 
 std::uint32_t divideUp(std::uint32_t a, std::uint32_t b) { return (a + b - 1) / b; }
+
+struct ArgsPush {
+  std::uint32_t touched_capacity;
+  std::uint32_t block_capacity;
+};
 
 }  // namespace
 
 DeviceFusion::DeviceFusion(vk::Context& context, const MapConfig& config)
     : context_(context),
       map_(context, config),
-      allocate_pipeline_(vk::ComputePipeline::create(context, "allocate_blocks", 4,
+      allocate_pipeline_(vk::ComputePipeline::create(context, "allocate_blocks", 5,
                                                      sizeof(gpu::AllocatePush))),
       integrate_pipeline_(vk::ComputePipeline::create(context, "integrate_tsdf", 6,
                                                       sizeof(gpu::IntegratePush))),
-      normals_pipeline_(vk::ComputePipeline::create(context, "estimate_normals", 2,
+      normals_pipeline_(vk::ComputePipeline::create(context, "estimate_normals", 3,
                                                     sizeof(gpu::NormalsPush))),
+      args_pipeline_(vk::ComputePipeline::create(context, "integrate_args", 2, sizeof(ArgsPush))),
+      commands_(vk::CommandBuffer::create(context)),
+      dispatch_args_(vk::Buffer::create(context, 32, vk::MemoryUsage::kDeviceLocal,
+                                        "integration dispatch arguments")),
       counters_readback_(vk::Buffer::create(context, sizeof(gpu::MapCounters),
                                             vk::MemoryUsage::kHostReadback, "counters readback")),
-      timer_(vk::TimestampQueries::create(context, 4)) {}
+      timer_(vk::TimestampQueries::create(context, 5)) {}
 
-void DeviceFusion::ensureFrameBuffers(std::size_t pixel_count) {
-  if (pixel_count <= pixel_capacity_) return;
-  const std::size_t bytes = pixel_count * 4;
-  depth_staging_ = vk::Buffer::create(context_, bytes, vk::MemoryUsage::kHostUpload, "depth staging");
-  color_staging_ = vk::Buffer::create(context_, bytes, vk::MemoryUsage::kHostUpload, "colour staging");
-  depth_ = vk::Buffer::create(context_, bytes, vk::MemoryUsage::kDeviceLocal, "depth image");
-  color_ = vk::Buffer::create(context_, bytes, vk::MemoryUsage::kDeviceLocal, "colour image");
-  normals_ = vk::Buffer::create(context_, bytes * 4, vk::MemoryUsage::kDeviceLocal, "depth normals");
-  pixel_capacity_ = pixel_count;
+const vk::DescriptorSet& DeviceFusion::cachedSet(CachedSet& cache,
+                                                 const vk::ComputePipeline& pipeline,
+                                                 const std::vector<const vk::Buffer*>& buffers) {
+  std::vector<std::uint64_t> ids(buffers.size());
+  for (std::size_t i = 0; i < buffers.size(); ++i) ids[i] = buffers[i]->id();
+  if (ids != cache.ids || cache.set.handle() == VK_NULL_HANDLE) {
+    cache.set = vk::DescriptorSet::create(context_, pipeline, buffers);
+    cache.ids = std::move(ids);
+  }
+  return cache.set;
+}
+
+void DeviceFusion::ensureFrameBuffers(std::size_t pixel_count, std::uint32_t tile_count) {
+  if (pixel_count > pixel_capacity_) {
+    const std::size_t depth_bytes = pixel_count * 4;
+    // Packed RGB, 3 bytes a pixel, plus one word so the kernel may read a pixel's next word.
+    const std::size_t color_bytes = (pixel_count * 3 + 3) / 4 * 4 + 4;
+    depth_staging_ =
+        vk::Buffer::create(context_, depth_bytes, vk::MemoryUsage::kHostUpload, "depth staging");
+    color_staging_ =
+        vk::Buffer::create(context_, color_bytes, vk::MemoryUsage::kHostUpload, "colour staging");
+    depth_ = vk::Buffer::create(context_, depth_bytes, vk::MemoryUsage::kDeviceLocal, "depth image");
+    color_ = vk::Buffer::create(context_, color_bytes, vk::MemoryUsage::kDeviceLocal, "colour image");
+    normals_ = vk::Buffer::create(context_, depth_bytes * 4, vk::MemoryUsage::kDeviceLocal,
+                                  "depth normals");
+    std::memset(color_staging_.mapped(), 0, color_bytes);
+    pixel_capacity_ = pixel_count;
+  }
+  if (tile_count > tile_capacity_) {
+    quarter_ranges_ = vk::Buffer::create(context_, std::uint64_t{tile_count} * 8 * 4,
+                                         vk::MemoryUsage::kDeviceLocal, "quarter-tile depth ranges");
+    tile_capacity_ = tile_count;
+  }
+}
+
+void DeviceFusion::reserveAhead() {
+  map_.maintainLoadFactor();
+  const std::uint32_t headroom = std::max(kMinReserveBlocks, last_touched_count_);
+  map_.reserveBlocks(map_.blockCount() + headroom);
+  const std::uint32_t wanted_touched =
+      std::max(kMinTouchedCapacity, last_touched_count_ + last_touched_count_ / 2);
+  if (wanted_touched > touched_capacity_) {
+    touched_capacity_ = wanted_touched;
+    touched_ = vk::Buffer::create(context_, std::uint64_t{touched_capacity_} * 4,
+                                  vk::MemoryUsage::kDeviceLocal, "touched blocks");
+  }
+  if (track_touched_ && (!touched_keys_.valid() || touched_keys_.size() < touched_capacity_ * 8ull)) {
+    touched_keys_ = vk::Buffer::create(context_, std::uint64_t{touched_capacity_} * 8,
+                                       vk::MemoryUsage::kHostReadback, "touched block keys");
+  }
 }
 
 void DeviceFusion::stageFrame(const RgbdFrame& frame) {
   std::memcpy(depth_staging_.mapped(), frame.depth.depth_m.data(),
               frame.depth.depth_m.size() * sizeof(float));
-  if (frame.color.empty()) return;
-  auto* packed = static_cast<std::uint32_t*>(color_staging_.mapped());
-  const std::size_t pixels = frame.depth.depth_m.size();
-  for (std::size_t i = 0; i < pixels; ++i) {
-    const std::uint8_t* rgb = &frame.color.rgb[i * 3];
-    packed[i] = packRgb(rgb[0], rgb[1], rgb[2]);
+  // Colour goes up as the frame holds it (packed RGB); integrate_tsdf.comp unpacks per voxel.
+  if (!frame.color.empty()) {
+    std::memcpy(color_staging_.mapped(), frame.color.rgb.data(), frame.color.rgb.size());
   }
 }
 
@@ -58,48 +110,105 @@ FrameStats DeviceFusion::integrate(const RgbdFrame& frame, const CameraIntrinsic
   intrinsics.validate();
   validateFrame(frame, intrinsics);
   const FrameCamera camera = FrameCamera::from(intrinsics, frame.T_W_C);
-  ensureFrameBuffers(frame.depth.depth_m.size());
-  if (touched_capacity_ == 0) {
-    touched_capacity_ = 4096;
-    touched_ = vk::Buffer::create(context_, touched_capacity_ * 4, vk::MemoryUsage::kDeviceLocal,
-                                  "touched blocks");
-  }
+  tile_count_ = divideUp(static_cast<std::uint32_t>(camera.width_px), gpu::kAllocationTilePx) *
+                divideUp(static_cast<std::uint32_t>(camera.height_px), gpu::kAllocationTilePx);
+  ensureFrameBuffers(frame.depth.depth_m.size(), tile_count_);
+  reserveAhead();
   stageFrame(frame);
-  map_.maintainLoadFactor();
 
   FrameStats stats;
-  gpu::MapCounters counters{};
-  bool upload_frame = true;
-  for (;;) {
-    counters = runAllocation(camera, upload_frame, stats);
-    upload_frame = false;
-    // Slots handed out must exist before anything reads them (throws and rolls back if not).
-    map_.commitBlockCount(counters.block_count);
-    bool retry = false;
-    if (counters.hash_failures > 0) {
-      map_.growHash(map_.hashCapacity() * 2);
-      retry = true;
-    }
-    if (counters.touched_count > touched_capacity_) {
-      touched_capacity_ = counters.touched_count + counters.touched_count / 2;
-      touched_ = vk::Buffer::create(context_, std::uint64_t{touched_capacity_} * 4,
-                                    vk::MemoryUsage::kDeviceLocal, "touched blocks");
-      retry = true;
-    }
-    if (!retry) break;
-  }
+  const bool has_color = !frame.color.empty();
+  gpu::MapCounters counters = runPass(camera, true, has_color, layer, stats);
+  while (growAfterOverflow(counters)) counters = runPass(camera, false, has_color, layer, stats);
+  // Slots handed out must exist before anything reads them (throws and rolls back if not).
+  map_.commitBlockCount(counters.block_count);
   stats.touched_blocks = counters.touched_count;
+  last_touched_count_ = counters.touched_count;
   last_touched_.clear();
-  if (counters.touched_count > 0) {
-    runIntegration(camera, !frame.color.empty(), counters.touched_count, layer, stats);
-  }
+  if (track_touched_) readTouchedBlocks(counters.touched_count);
   stats.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() -
                                                             wall_start).count();
   return stats;
 }
 
-gpu::MapCounters DeviceFusion::runAllocation(const FrameCamera& camera, bool upload_frame,
-                                             FrameStats& stats) {
+bool DeviceFusion::growAfterOverflow(const gpu::MapCounters& counters) {
+  bool again = false;
+  if (counters.block_count > map_.blockCapacity()) {
+    map_.commitBlockCount(counters.block_count);  // grows, or throws and rolls the table back
+    again = true;
+  }
+  if (counters.hash_failures > 0) {
+    map_.growHash(map_.hashCapacity() * 2);
+    again = true;
+  }
+  if (counters.touched_count > touched_capacity_) {
+    last_touched_count_ = counters.touched_count;
+    touched_capacity_ = 0;  // reserveAhead makes a list for this many and a half
+    again = true;
+  }
+  if (again) reserveAhead();
+  return again;
+}
+
+gpu::MapCounters DeviceFusion::runPass(const FrameCamera& camera, bool first_pass, bool has_color,
+                                       int layer, FrameStats& stats) {
+  vk::CommandBuffer& cmd = commands_;
+  cmd.begin();
+  cmd.resetQueries(timer_);
+  cmd.writeTimestamp(timer_, 0);
+  if (first_pass) {
+    const VkDeviceSize pixels = static_cast<VkDeviceSize>(camera.width_px) * camera.height_px;
+    cmd.copy(depth_staging_, depth_, pixels * 4);
+    if (has_color) cmd.copy(color_staging_, color_, color_staging_.size());
+    // Quarter ranges start empty: smallest at all ones, largest at zero.
+    const VkDeviceSize half = VkDeviceSize{tile_count_} * 4 * 4;
+    cmd.fill(quarter_ranges_, 0xFFFFFFFFu, 0, half);
+    cmd.fill(quarter_ranges_, 0u, half, half);
+  }
+  cmd.fill(map_.counters(), 0u, offsetof(gpu::MapCounters, touched_count), 8);
+  cmd.barrier();
+  cmd.writeTimestamp(timer_, 1);
+  if (first_pass) recordNormals(cmd, camera);
+  cmd.writeTimestamp(timer_, 2);
+  recordAllocation(cmd, camera);
+  cmd.writeTimestamp(timer_, 3);
+  recordIntegration(cmd, camera, has_color, layer);
+  if (track_touched_) recordTouchedGather(cmd);
+  cmd.writeTimestamp(timer_, 4);
+  cmd.copy(map_.counters(), counters_readback_, sizeof(gpu::MapCounters));
+  cmd.barrier();
+  cmd.end();
+  cmd.submitAndWait();
+
+  stats.upload_ms += timer_.elapsedMs(0, 1);
+  stats.normals_ms += timer_.elapsedMs(1, 2);
+  stats.allocate_ms += timer_.elapsedMs(2, 3);
+  stats.integrate_ms += timer_.elapsedMs(3, 4);
+  stats.allocation_passes += 1;
+  gpu::MapCounters counters{};
+  std::memcpy(&counters, counters_readback_.mapped(), sizeof(counters));
+  return counters;
+}
+
+void DeviceFusion::recordNormals(vk::CommandBuffer& cmd, const FrameCamera& camera) {
+  gpu::NormalsPush push{};
+  for (int i = 0; i < 4; ++i) push.K[i] = camera.K[i];
+  push.image_size[0] = static_cast<std::uint32_t>(camera.width_px);
+  push.image_size[1] = static_cast<std::uint32_t>(camera.height_px);
+  push.min_depth_m = config().min_depth_m;
+  push.max_depth_m = config().max_depth_m;
+  push.max_relative_jump = config().normal_max_relative_jump;
+  push.flags = config().distance_mode == DistanceMode::kPointToPlane ? gpu::kNormalsFlagWrite : 0u;
+  push.tiles_x = divideUp(push.image_size[0], gpu::kAllocationTilePx);
+  push.tile_count = tile_count_;
+  cmd.bind(normals_pipeline_,
+           cachedSet(normals_set_, normals_pipeline_, {&depth_, &normals_, &quarter_ranges_}));
+  cmd.pushConstants(normals_pipeline_, &push, sizeof(push));
+  cmd.dispatch(divideUp(push.image_size[0], 16), divideUp(push.image_size[1], 16));
+  cmd.barrier();
+}
+
+void DeviceFusion::recordAllocation(vk::CommandBuffer& cmd, const FrameCamera& camera) {
   gpu::AllocatePush push{};
   gpu::storeMatrix(camera.T_W_C, push.T_W_C);
   for (int i = 0; i < 4; ++i) push.K[i] = camera.K[i];
@@ -113,58 +222,25 @@ gpu::MapCounters DeviceFusion::runAllocation(const FrameCamera& camera, bool upl
   push.pass_id = ++pass_id_;
   push.touched_capacity = touched_capacity_;
   push.free_space_stride = config().allocate_free_space ? config().free_space_pixel_stride : 0u;
-
-  vk::DescriptorSet set = vk::DescriptorSet::create(
-      context_, allocate_pipeline_, {&map_.hashEntries(), &map_.counters(), &touched_, &depth_});
-  vk::DescriptorSet normals_set =
-      vk::DescriptorSet::create(context_, normals_pipeline_, {&depth_, &normals_});
-  gpu::NormalsPush normals_push{};
-  for (int i = 0; i < 4; ++i) normals_push.K[i] = camera.K[i];
-  normals_push.image_size[0] = push.image_size[0];
-  normals_push.image_size[1] = push.image_size[1];
-  normals_push.min_depth_m = push.min_depth_m;
-  normals_push.max_depth_m = push.max_depth_m;
-  normals_push.max_relative_jump = config().normal_max_relative_jump;
-  vk::CommandBuffer cmd = vk::CommandBuffer::create(context_);
-  cmd.begin();
-  cmd.resetQueries(timer_);
-  cmd.writeTimestamp(timer_, 0);
-  if (upload_frame) {
-    const VkDeviceSize bytes = static_cast<VkDeviceSize>(camera.width_px) * camera.height_px * 4;
-    cmd.copy(depth_staging_, depth_, bytes);
-    cmd.copy(color_staging_, color_, bytes);
-  }
-  cmd.fill(map_.counters(), 0u, offsetof(gpu::MapCounters, touched_count), 8);
-  cmd.barrier();
-  cmd.writeTimestamp(timer_, 1);
-  if (upload_frame && config().distance_mode == DistanceMode::kPointToPlane) {
-    cmd.bind(normals_pipeline_, normals_set);
-    cmd.pushConstants(normals_pipeline_, &normals_push, sizeof(normals_push));
-    cmd.dispatch(divideUp(push.image_size[0], 16), divideUp(push.image_size[1], 16));
-    cmd.barrier();
-  }
-  cmd.writeTimestamp(timer_, 2);
-  cmd.bind(allocate_pipeline_, set);
+  push.max_slab_depth_m = maxSlabDepth(config());
+  cmd.bind(allocate_pipeline_,
+           cachedSet(allocate_set_, allocate_pipeline_,
+                     {&map_.hashEntries(), &map_.counters(), &touched_, &depth_, &quarter_ranges_}));
   cmd.pushConstants(allocate_pipeline_, &push, sizeof(push));
-  cmd.dispatch(divideUp(push.image_size[0], 16), divideUp(push.image_size[1], 16));
+  constexpr std::uint32_t kGroupPx = 8 * gpu::kAllocationTilePx;  // 8 x 8 tiles per group
+  cmd.dispatch(divideUp(push.image_size[0], kGroupPx), divideUp(push.image_size[1], kGroupPx));
   cmd.barrier();
-  cmd.writeTimestamp(timer_, 3);
-  cmd.copy(map_.counters(), counters_readback_, sizeof(gpu::MapCounters));
-  cmd.barrier();
-  cmd.end();
-  cmd.submitAndWait();
 
-  stats.upload_ms += timer_.elapsedMs(0, 1);
-  stats.normals_ms += timer_.elapsedMs(1, 2);
-  stats.allocate_ms += timer_.elapsedMs(2, 3);
-  stats.allocation_passes += 1;
-  gpu::MapCounters counters{};
-  std::memcpy(&counters, counters_readback_.mapped(), sizeof(counters));
-  return counters;
+  const ArgsPush args{touched_capacity_, map_.blockCapacity()};
+  cmd.bind(args_pipeline_,
+           cachedSet(args_set_, args_pipeline_, {&map_.counters(), &dispatch_args_}));
+  cmd.pushConstants(args_pipeline_, &args, sizeof(args));
+  cmd.dispatch(1);
+  cmd.barrier();
 }
 
-void DeviceFusion::runIntegration(const FrameCamera& camera, bool has_color,
-                                  std::uint32_t touched, int layer, FrameStats& stats) {
+void DeviceFusion::recordIntegration(vk::CommandBuffer& cmd, const FrameCamera& camera,
+                                     bool has_color, int layer) {
   gpu::IntegratePush push{};
   gpu::storeMatrix(camera.T_C_W, push.T_C_W);
   for (int i = 0; i < 4; ++i) push.K[i] = camera.K[i];
@@ -182,25 +258,13 @@ void DeviceFusion::runIntegration(const FrameCamera& camera, bool has_color,
                (has_color ? gpu::kFlagHasColor : 0u) |
                (config().distance_mode == DistanceMode::kPointToPlane ? gpu::kFlagPointToPlane
                                                                       : 0u);
-
-  vk::DescriptorSet set = vk::DescriptorSet::create(
-      context_, integrate_pipeline_,
-      {&map_.hashEntries(), &touched_, &depth_, &color_, &map_.counters(), &normals_});
-  vk::CommandBuffer cmd = vk::CommandBuffer::create(context_);
-  cmd.begin();
-  cmd.resetQueries(timer_);
-  cmd.writeTimestamp(timer_, 0);
-  cmd.bind(integrate_pipeline_, set);
+  cmd.bind(integrate_pipeline_,
+           cachedSet(integrate_set_, integrate_pipeline_,
+                     {&map_.hashEntries(), &touched_, &depth_, &color_, &map_.counters(),
+                      &normals_}));
   cmd.pushConstants(integrate_pipeline_, &push, sizeof(push));
-  const std::uint32_t groups_x = std::min(touched, kMaxGroupsPerDimension);
-  cmd.dispatch(groups_x, divideUp(touched, groups_x));
+  cmd.dispatchIndirect(dispatch_args_, 0);
   cmd.barrier();
-  cmd.writeTimestamp(timer_, 1);
-  if (track_touched_) recordTouchedGather(cmd, touched);
-  cmd.end();
-  cmd.submitAndWait();
-  stats.integrate_ms += timer_.elapsedMs(0, 1);
-  if (track_touched_) readTouchedBlocks(touched);
 }
 
 void DeviceFusion::setTrackTouchedBlocks(bool on) {
@@ -211,26 +275,19 @@ void DeviceFusion::setTrackTouchedBlocks(bool on) {
   }
 }
 
-void DeviceFusion::recordTouchedGather(vk::CommandBuffer& cmd, std::uint32_t touched) {
-  const std::uint64_t bytes = std::uint64_t{touched} * 8;
-  if (!touched_keys_.valid() || touched_keys_.size() < bytes) {
-    touched_keys_ = vk::Buffer::create(context_, std::max<std::uint64_t>(bytes * 3 / 2, 4096),
-                                       vk::MemoryUsage::kHostReadback, "touched block keys");
-  }
-  // A member: the set must outlive the submission, which runIntegration makes after this returns.
-  touched_keys_set_ = vk::DescriptorSet::create(
-      context_, touched_keys_pipeline_,
-      {&map_.hashEntries(), &touched_, &map_.counters(), &touched_keys_});
-  cmd.bind(touched_keys_pipeline_, touched_keys_set_);
-  const std::uint32_t groups = divideUp(touched, 256);
-  const std::uint32_t groups_x = std::min(groups, kMaxGroupsPerDimension);
-  cmd.dispatch(groups_x, divideUp(groups, groups_x));
+void DeviceFusion::recordTouchedGather(vk::CommandBuffer& cmd) {
+  cmd.bind(touched_keys_pipeline_,
+           cachedSet(gather_set_, touched_keys_pipeline_,
+                     {&map_.hashEntries(), &touched_, &map_.counters(), &touched_keys_}));
+  cmd.dispatchIndirect(dispatch_args_, kGatherArgsOffset);
   cmd.barrier();
 }
 
 void DeviceFusion::readTouchedBlocks(std::uint32_t touched) {
-  const auto* keys = static_cast<const std::uint64_t*>(touched_keys_.mapped());
   last_touched_.resize(touched);
+  if (touched == 0) return;
+  std::vector<std::uint64_t> keys(touched);
+  vk::download(context_, touched_keys_, keys.data(), keys.size() * sizeof(std::uint64_t));
   for (std::uint32_t i = 0; i < touched; ++i) last_touched_[i] = unpackBlockKey(keys[i]);
 }
 

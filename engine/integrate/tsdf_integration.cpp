@@ -119,7 +119,7 @@ std::vector<BlockIndex> integrateFrameReference(TsdfMap& map, const RgbdFrame& f
   validateFrame(frame, intrinsics);
   const MapConfig& config = map.config();
   const FrameCamera camera = FrameCamera::from(intrinsics, frame.T_W_C);
-  const std::vector<BlockIndex> touched = touchedBlocksReference(frame.depth, camera, config);
+  const std::vector<BlockIndex> touched = allocatedBlocksReference(frame.depth, camera, config);
   const std::vector<Eigen::Vector4f> normals_C =
       estimateNormalsReference(frame.depth, camera, config);
   std::vector<TsdfBlock*> blocks;

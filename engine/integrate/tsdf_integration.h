@@ -43,7 +43,7 @@ VoxelObservation observeVoxelReference(const Eigen::Vector3f& p_W, const DepthIm
 void applyObservation(TsdfVoxel& voxel, const VoxelObservation& observation,
                       const ColorImage* color, const MapConfig& config);
 
-/// Whole frame on the host: allocate the touched blocks (touchedBlocksReference) and update all
+/// Whole frame on the host: allocate the blocks (allocatedBlocksReference) and update all
 /// their voxels. Returns the touched blocks. Uses up to `threads` threads over blocks.
 std::vector<BlockIndex> integrateFrameReference(TsdfMap& map, const RgbdFrame& frame,
                                                 const CameraIntrinsics& intrinsics,

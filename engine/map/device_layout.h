@@ -36,8 +36,12 @@ struct AllocatePush {
   std::uint32_t pass_id;
   std::uint32_t touched_capacity;
   std::uint32_t free_space_stride;
-  std::uint32_t pad[2];
+  float max_slab_depth_m;  // a tile whose depths span more is split, then marched per pixel
+  std::uint32_t pad;
 };
+/// allocate_blocks.comp: one invocation per tile of this many pixels on a side (8 x 8 tiles per
+/// workgroup).
+inline constexpr std::uint32_t kAllocationTilePx = 8;
 static_assert(sizeof(AllocatePush) == 128 && offsetof(AllocatePush, truncation_m) == 96,
               "AllocatePush layout");
 
@@ -51,9 +55,12 @@ struct NormalsPush {
   float min_depth_m;
   float max_depth_m;
   float max_relative_jump;
-  std::uint32_t pad[3];
+  std::uint32_t flags;  // kNormalsFlagWrite: write normals (else only the quarter-tile ranges)
+  std::uint32_t tiles_x;
+  std::uint32_t tile_count;
 };
 static_assert(sizeof(NormalsPush) == 48, "NormalsPush layout");
+inline constexpr std::uint32_t kNormalsFlagWrite = 1u;
 
 struct IntegratePush {
   float T_C_W[16];

@@ -111,6 +111,22 @@ void DeviceTsdfMap::maintainLoadFactor() {
   }
 }
 
+void DeviceTsdfMap::reserveBlocks(std::uint32_t blocks) {
+  if (blocks <= block_capacity_) return;
+  const std::uint64_t device_max = context_.limits().max_memory_allocation_bytes / kBlockBytes;
+  std::uint64_t max_blocks = device_max;
+  if (config_.max_block_capacity > 0) {
+    max_blocks = std::min<std::uint64_t>(max_blocks, config_.max_block_capacity);
+  }
+  const auto wanted = static_cast<std::uint32_t>(std::min<std::uint64_t>(blocks, max_blocks));
+  if (wanted <= block_capacity_) return;
+  try {
+    growPool(wanted);
+  } catch (const DeviceError&) {
+    // Headroom only: the map is as it was, and a frame that truly needs the blocks reports it.
+  }
+}
+
 void DeviceTsdfMap::growPool(std::uint32_t min_blocks) {
   const std::uint64_t device_max = context_.limits().max_memory_allocation_bytes / kBlockBytes;
   const std::uint64_t max_blocks =

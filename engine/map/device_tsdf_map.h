@@ -61,6 +61,10 @@ class DeviceTsdfMap {
   void growHash(std::uint32_t min_capacity);
   /// Grow the table when it is more than half full, so probes stay short.
   void maintainLoadFactor();
+  /// Grows the pool ahead of time so that it holds at least `blocks` blocks, as far as the map's
+  /// block budget and the device allow (never throws for the budget: the frame that needs more
+  /// then fails in commitBlockCount with the usual error). Lets a frame run in one submission.
+  void reserveBlocks(std::uint32_t blocks);
 
   /// Explicit device->host copy of one TSDF layer (every allocated block, unobserved ones too).
   void download(TsdfMap& out, int layer = 0);

@@ -1,5 +1,6 @@
 // Buffer: one VkBuffer with its own memory, persistently mapped when host-visible.
 #include <algorithm>
+#include <atomic>
 #include <cstdio>
 #include <utility>
 
@@ -12,7 +13,11 @@ namespace {
 
 constexpr VkBufferUsageFlags kBufferUsage =
     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
-    VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
+    VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
+    VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
+
+// Identities of buffers, never reused (VkBuffer handles are), for caches keyed on buffers.
+std::atomic<std::uint64_t> next_buffer_id{1};
 
 // Memory that the host reads and writes at full speed and the device uses directly (lavapipe,
 // integrated GPUs): device-local buffers there skip the staging copy.
@@ -126,13 +131,15 @@ Buffer Buffer::create(Context& context, VkDeviceSize size_bytes, MemoryUsage usa
   noteCreated(context);
   buffer.size_bytes_ = size_bytes;
   buffer.name_ = debug_name;
+  buffer.id_ = next_buffer_id.fetch_add(1);
   buffer.buffer_ = createHandle(impl, size_bytes, debug_name);
   const std::uint32_t type_index =
       allocateAndBind(context, buffer.buffer_, size_bytes, usage, debug_name, buffer.memory_);
   const VkMemoryPropertyFlags properties =
       impl.memory_properties.memoryTypes[type_index].propertyFlags;
   const bool host_usage = usage != MemoryUsage::kDeviceLocal;
-  if (host_usage || (properties & kUnifiedMemory) == kUnifiedMemory) {
+  const bool unified = (properties & kUnifiedMemory) == kUnifiedMemory && !impl.staged_memory;
+  if (host_usage || unified) {
     void* pointer = nullptr;
     checkFor(impl.vk.vkMapMemory(impl.device, buffer.memory_, 0, VK_WHOLE_SIZE, 0, &pointer),
              "vkMapMemory", "buffer '" + debug_name + "'");
@@ -158,6 +165,7 @@ Buffer::Buffer(Buffer&& other) noexcept
       address_(std::exchange(other.address_, 0)),
       mapped_(std::exchange(other.mapped_, nullptr)),
       host_view_(std::exchange(other.host_view_, nullptr)),
+      id_(std::exchange(other.id_, 0)),
       name_(std::move(other.name_)) {}
 
 Buffer& Buffer::operator=(Buffer&& other) noexcept {
@@ -170,6 +178,7 @@ Buffer& Buffer::operator=(Buffer&& other) noexcept {
     address_ = std::exchange(other.address_, 0);
     mapped_ = std::exchange(other.mapped_, nullptr);
     host_view_ = std::exchange(other.host_view_, nullptr);
+    id_ = std::exchange(other.id_, 0);
     name_ = std::move(other.name_);
   }
   return *this;

@@ -108,6 +108,11 @@ void CommandBuffer::dispatch(std::uint32_t groups_x, std::uint32_t groups_y,
   dispatchOf(*context_).vkCmdDispatch(command_buffer_, groups_x, groups_y, groups_z);
 }
 
+void CommandBuffer::dispatchIndirect(const Buffer& args, VkDeviceSize offset_bytes) {
+  requireRange(*context_, args, offset_bytes, 12, "dispatchIndirect (arguments)");
+  dispatchOf(*context_).vkCmdDispatchIndirect(command_buffer_, args.handle(), offset_bytes);
+}
+
 void CommandBuffer::barrier() {
   // NOTE: one global memory barrier rather than per-buffer ones: simpler, and on the devices
   // Strata targets the cost is the execution dependency, which buffer barriers would not avoid.
@@ -115,11 +120,12 @@ void CommandBuffer::barrier() {
   barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
   barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
                           VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT |
-                          VK_ACCESS_HOST_READ_BIT | VK_ACCESS_HOST_WRITE_BIT;
+                          VK_ACCESS_HOST_READ_BIT | VK_ACCESS_HOST_WRITE_BIT |
+                          VK_ACCESS_INDIRECT_COMMAND_READ_BIT;
   dispatchOf(*context_).vkCmdPipelineBarrier(
       command_buffer_, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT |
-          VK_PIPELINE_STAGE_HOST_BIT,
+          VK_PIPELINE_STAGE_HOST_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
       0, 1, &barrier, 0, nullptr, 0, nullptr);
 }
 

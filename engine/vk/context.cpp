@@ -16,6 +16,17 @@
 namespace strata::vk {
 namespace {
 
+// STRATA_DEVICE_MEMORY: "staged" forces the staging path, "mapped" (or unset) allows mapping
+// unified memory; anything else is refused so that a typo does not silently test the wrong path.
+bool stagedMemoryRequested(const ContextOptions& options) {
+  if (options.staged_memory) return true;
+  const char* env = std::getenv("STRATA_DEVICE_MEMORY");
+  if (env == nullptr || *env == '\0' || std::string(env) == "mapped") return false;
+  if (std::string(env) == "staged") return true;
+  throw Error(std::string("STRATA_DEVICE_MEMORY='") + env +
+              "' is not understood; use 'staged' (never map device-local memory) or 'mapped'");
+}
+
 constexpr double kBytesPerMiB = 1024.0 * 1024.0;
 
 std::string hex(std::uint32_t value) {
@@ -88,6 +99,9 @@ void logDeviceOnce(const Context& context) {
 }  // namespace
 
 Context::Impl::~Impl() {
+  staging_commands.reset();
+  staging_upload.reset();
+  staging_download.reset();
   if (live_objects.load() != 0) {
     std::cerr << "strata: warning: Vulkan context destroyed while " << live_objects.load()
               << " object(s) made from it are alive; destroy buffers, pipelines and command "
@@ -120,6 +134,7 @@ std::unique_ptr<Context> Context::create(const ContextOptions& options) {
   // Built step by step inside Impl, whose destructor undoes whatever was made if a step throws.
   auto impl = std::make_unique<Impl>();
   impl->validation = validationRequested(options);
+  impl->staged_memory = stagedMemoryRequested(options);
   impl->vk = globalDispatch();
   bool debug_utils = false;
   impl->instance = createInstance(impl->vk, impl->validation, debug_utils);
@@ -155,6 +170,7 @@ const std::string& Context::deviceName() const { return impl_->device_name; }
 VkPhysicalDeviceType Context::deviceType() const { return impl_->device_type; }
 const DeviceLimits& Context::limits() const { return impl_->limits; }
 bool Context::validationEnabled() const { return impl_->validation; }
+bool Context::stagedMemory() const { return impl_->staged_memory; }
 std::uint64_t Context::allocatedBytes() const { return impl_->allocated_bytes.load(); }
 std::uint64_t Context::peakAllocatedBytes() const { return impl_->peak_allocated_bytes.load(); }
 
@@ -172,7 +188,8 @@ std::string Context::describe() const {
     << ", timestamp period " << l.timestamp_period_ns << " ns (" << l.timestamp_valid_bits
     << " valid bits), float32 atomics: add " << (l.float32_atomic_add ? "yes" : "no")
     << ", min/max " << (l.float32_atomic_min_max ? "yes" : "no") << ", validation "
-    << (impl_->validation ? "on" : "off");
+    << (impl_->validation ? "on" : "off") << ", memory "
+    << (impl_->staged_memory ? "staged (STRATA_DEVICE_MEMORY=staged)" : "mapped where unified");
   return s.str();
 }
 

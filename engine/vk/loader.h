@@ -76,6 +76,7 @@ namespace strata::vk {
   X(vkCmdBindDescriptorSets)          \
   X(vkCmdPushConstants)               \
   X(vkCmdDispatch)                    \
+  X(vkCmdDispatchIndirect)            \
   X(vkCmdPipelineBarrier)             \
   X(vkCmdCopyBuffer)                  \
   X(vkCmdFillBuffer)                  \

@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "core/error.h"
+#include "vk/internal/context_impl.h"
 
 namespace strata::vk {
 namespace {
@@ -54,14 +55,41 @@ void download(Context& context, const Buffer& src, void* dst, std::size_t bytes,
   stagedDownload(context, src, dst, bytes, src_offset);
 }
 
+namespace {
+
+/// The context's persistent staging buffer of `usage`, at least `bytes` long. Caller holds the
+/// staging mutex.
+Buffer& stagingBuffer(Context& context, MemoryUsage usage, std::size_t bytes) {
+  Context::Impl& impl = ContextAccess::impl(context);
+  std::unique_ptr<Buffer>& slot =
+      usage == MemoryUsage::kHostUpload ? impl.staging_upload : impl.staging_download;
+  if (!slot || slot->size() < bytes) {
+    slot.reset();  // free the old one first: the new one may be large
+    slot = std::make_unique<Buffer>(Buffer::create(
+        context, bytes, usage,
+        usage == MemoryUsage::kHostUpload ? "staging upload" : "staging download"));
+  }
+  return *slot;
+}
+
+CommandBuffer& stagingCommands(Context& context) {
+  Context::Impl& impl = ContextAccess::impl(context);
+  if (!impl.staging_commands) {
+    impl.staging_commands = std::make_unique<CommandBuffer>(CommandBuffer::create(context));
+  }
+  return *impl.staging_commands;
+}
+
+}  // namespace
+
 void stagedUpload(Context& context, Buffer& dst, const void* src, std::size_t bytes,
                   std::size_t dst_offset) {
   requireRange(context, dst, dst_offset, bytes, "upload");
   if (bytes == 0) return;
   const std::size_t chunk_bytes = std::min(bytes, kStagingChunkBytes);
-  Buffer staging = Buffer::create(context, chunk_bytes, MemoryUsage::kHostUpload,
-                                  "staging upload to " + dst.name());
-  CommandBuffer commands = CommandBuffer::create(context);
+  std::lock_guard<std::mutex> lock(ContextAccess::impl(context).staging_mutex);
+  Buffer& staging = stagingBuffer(context, MemoryUsage::kHostUpload, chunk_bytes);
+  CommandBuffer& commands = stagingCommands(context);
   for (std::size_t done = 0; done < bytes; done += chunk_bytes) {
     const std::size_t n = std::min(chunk_bytes, bytes - done);
     std::memcpy(staging.mapped(), static_cast<const char*>(src) + done, n);
@@ -78,9 +106,9 @@ void stagedDownload(Context& context, const Buffer& src, void* dst, std::size_t 
   requireRange(context, src, src_offset, bytes, "download");
   if (bytes == 0) return;
   const std::size_t chunk_bytes = std::min(bytes, kStagingChunkBytes);
-  Buffer staging = Buffer::create(context, chunk_bytes, MemoryUsage::kHostReadback,
-                                  "staging download from " + src.name());
-  CommandBuffer commands = CommandBuffer::create(context);
+  std::lock_guard<std::mutex> lock(ContextAccess::impl(context).staging_mutex);
+  Buffer& staging = stagingBuffer(context, MemoryUsage::kHostReadback, chunk_bytes);
+  CommandBuffer& commands = stagingCommands(context);
   for (std::size_t done = 0; done < bytes; done += chunk_bytes) {
     const std::size_t n = std::min(chunk_bytes, bytes - done);
     commands.begin();

@@ -31,6 +31,10 @@ struct ContextOptions {
   bool enable_validation = false;
   /// Log the chosen device and its limits once to stderr.
   bool log_device = true;
+  /// Never map device-local memory, even where it is host-visible (lavapipe, integrated GPUs):
+  /// every host<->device copy then takes the staging path a discrete GPU needs, so that path is
+  /// tested on any machine. Also on when env STRATA_DEVICE_MEMORY=staged.
+  bool staged_memory = false;
 };
 
 struct DeviceLimits {
@@ -77,6 +81,8 @@ class Context {
   /// One line: name, type, driver, the limits above.
   std::string describe() const;
   bool validationEnabled() const;
+  /// ContextOptions::staged_memory (or STRATA_DEVICE_MEMORY=staged) is in effect.
+  bool stagedMemory() const;
 
   /// Index of a memory type with all `required` flags (preferring `preferred` as well).
   std::uint32_t findMemoryType(std::uint32_t type_bits, VkMemoryPropertyFlags required,
@@ -129,6 +135,9 @@ class Buffer {
   /// Mapped pointer for kHostUpload/kHostReadback buffers, nullptr otherwise.
   void* mapped() const { return mapped_; }
   const std::string& name() const { return name_; }
+  /// Unique over the process for every created buffer (moves keep it; 0 when empty): what caches
+  /// keyed on buffers compare, since Vulkan may reuse a destroyed buffer's handle.
+  std::uint64_t id() const { return id_; }
 
  private:
   void release();
@@ -141,6 +150,7 @@ class Buffer {
   // Private host view of a kDeviceLocal buffer whose memory is also host-visible, coherent and
   // cached (lavapipe, integrated GPUs): upload/download memcpy through it instead of staging.
   void* host_view_ = nullptr;
+  std::uint64_t id_ = 0;
   std::string name_;
   friend struct BufferAccess;  // engine/vk/transfer.h
 };
@@ -251,6 +261,9 @@ class CommandBuffer {
   void bind(const ComputePipeline& pipeline, const DescriptorSet& set);
   void pushConstants(const ComputePipeline& pipeline, const void* data, std::size_t bytes);
   void dispatch(std::uint32_t groups_x, std::uint32_t groups_y = 1, std::uint32_t groups_z = 1);
+  /// Dispatch with the group counts a kernel wrote: three uint32 at `offset_bytes` of `args`
+  /// (VkDispatchIndirectCommand; offset a multiple of 4).
+  void dispatchIndirect(const Buffer& args, VkDeviceSize offset_bytes = 0);
   /// Full memory barrier between compute/transfer writes and later compute/transfer/host access.
   void barrier();
   void copy(const Buffer& src, Buffer& dst, VkDeviceSize bytes, VkDeviceSize src_offset = 0,

@@ -4,7 +4,8 @@
 // Workgroup: 8 x 8 x 8, one workgroup per touched block, one invocation per voxel; each voxel is
 // written by exactly one invocation per frame, so no atomics.
 // Bindings: 0 HashEntry entries[], 1 uint touched_entries[], 2 float depth_m[],
-//           3 uint color_rgba[] (one per pixel; ignored unless kFlagHasColor), 4 MapCounters,
+//           3 uint color_rgb8[] (the frame's packed 8-bit RGB, 3 bytes per pixel, row-major,
+//           padded to whole words; ignored unless kFlagHasColor), 4 MapCounters,
 //           5 vec4 normal_C[] (estimate_normals output; used when kFlagPointToPlane).
 // Dispatch: (min(n, 65535), ceil(n / 65535)) groups for n touched blocks; extra groups exit.
 // Push constants: IntegratePush (engine/kernels/device_layout.h).
@@ -17,7 +18,7 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 8) in;
 layout(std430, binding = 0) readonly buffer Entries { HashEntry entries[]; };
 layout(std430, binding = 1) readonly buffer Touched { uint touched_entries[]; };
 layout(std430, binding = 2) readonly buffer Depth { float depth_m[]; };
-layout(std430, binding = 3) readonly buffer Color { uint color_rgba[]; };
+layout(std430, binding = 3) readonly buffer Color { uint color_rgb8[]; };
 layout(std430, binding = 4) readonly buffer Counters { MapCounters counters; };
 layout(std430, binding = 5) readonly buffer Normals { vec4 normal_C[]; };
 
@@ -40,6 +41,16 @@ layout(push_constant, std430) uniform Push {
   uint weight_mode;
   uint flags;
 } pc;
+
+// The pixel's colour as r | g << 8 | b << 16 (packRgb) from the packed RGB bytes.
+uint pixelColor(uint pixel) {
+  uint byte_index = pixel * 3u;
+  uint word = byte_index >> 2u;
+  uint shift = (byte_index & 3u) * 8u;
+  uint low = color_rgb8[word] >> shift;
+  uint high = shift > 8u ? color_rgb8[word + 1u] << (32u - shift) : 0u;
+  return (low | high) & 0xFFFFFFu;
+}
 
 uint blendColor(uint old_rgba, uint new_rgba, float old_weight, float weight) {
   vec3 old_c = vec3(old_rgba & 255u, (old_rgba >> 8) & 255u, (old_rgba >> 16) & 255u);
@@ -93,7 +104,7 @@ void main() {
   float new_weight = voxel.weight + weight;
   voxel.tsdf_m = (voxel.tsdf_m * voxel.weight + tsdf_m * weight) / new_weight;
   if ((pc.flags & kFlagHasColor) != 0u) {
-    voxel.color_rgba = blendColor(voxel.color_rgba, color_rgba[pixel], voxel.weight, weight);
+    voxel.color_rgba = blendColor(voxel.color_rgba, pixelColor(pixel), voxel.weight, weight);
   }
   voxel.weight = min(new_weight, pc.max_weight);
   voxels.voxels[v] = voxel;

@@ -2,9 +2,12 @@
 // Private: what a Context holds, and the access the other wrappers need to it.
 #include <atomic>
 #include <cstdint>
+#include <memory>
+#include <mutex>
 #include <string>
 
 #include "vk/loader.h"
+#include "vk/vk.h"
 
 namespace strata::vk {
 
@@ -35,11 +38,18 @@ struct Context::Impl {
   DeviceLimits limits;
   VkPhysicalDeviceMemoryProperties memory_properties{};
   bool validation = false;
+  bool staged_memory = false;  // ContextOptions::staged_memory
 
   std::atomic<std::uint64_t> allocated_bytes{0};
   std::atomic<std::uint64_t> peak_allocated_bytes{0};
   // Wrappers alive on this context; ~Impl warns when some outlive it (a use-after-free to come).
   std::atomic<std::int64_t> live_objects{0};
+  // Persistent staging buffers of upload()/download() where memory cannot be mapped (created at
+  // first use, grown to the largest chunk asked for; released first by ~Impl).
+  std::mutex staging_mutex;
+  std::unique_ptr<Buffer> staging_upload;
+  std::unique_ptr<Buffer> staging_download;
+  std::unique_ptr<CommandBuffer> staging_commands;
 };
 
 /// The wrappers' way into a Context (friend of Context).
