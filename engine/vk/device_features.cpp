@@ -131,6 +131,17 @@ std::string missingRequirements(const Dispatch& vk, VkPhysicalDevice device) {
   if (!computeQueueFamily(vk, device)) {
     missing.push_back("a compute queue with timestamp queries (timestampValidBits > 0)");
   }
+  // estimate_normals.comp reduces runs of 4 invocations with subgroupShuffleXor / subgroupAll.
+  VkPhysicalDeviceVulkan11Properties v11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_PROPERTIES};
+  VkPhysicalDeviceProperties2 properties2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &v11};
+  vk.vkGetPhysicalDeviceProperties2(device, &properties2);
+  if ((v11.subgroupSupportedStages & VK_SHADER_STAGE_COMPUTE_BIT) == 0 ||
+      (v11.subgroupSupportedOperations & VK_SUBGROUP_FEATURE_SHUFFLE_BIT) == 0 ||
+      (v11.subgroupSupportedOperations & VK_SUBGROUP_FEATURE_VOTE_BIT) == 0 ||
+      v11.subgroupSize < 4) {
+    missing.push_back("subgroup shuffle and vote in compute shaders with subgroups of at least 4 (device: " +
+                      std::to_string(v11.subgroupSize) + "-wide)");
+  }
   std::string joined;
   for (const std::string& item : missing) joined += (joined.empty() ? "" : ", ") + item;
   return joined;

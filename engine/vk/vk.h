@@ -59,7 +59,8 @@ struct PhysicalDeviceInfo {
 };
 
 /// Instance + logical device + one compute queue. Required features (checked with a clear error):
-/// Vulkan 1.2, shaderInt64, shaderBufferInt64Atomics, bufferDeviceAddress, timestamp queries.
+/// Vulkan 1.2, shaderInt64, shaderBufferInt64Atomics, bufferDeviceAddress, timestamp queries,
+/// subgroup shuffle and vote in compute (subgroups of at least 4).
 class Context {
  public:
   static std::unique_ptr<Context> create(const ContextOptions& options = {});

@@ -13,6 +13,8 @@
 // Push constants: vec4 K, uvec2 image_size, float min_depth_m, max_depth_m, max_relative_jump,
 //                 uint flags (1: write normals), uint tiles_x, uint tile_count.
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_shuffle : require
+#extension GL_KHR_shader_subgroup_vote : require
 #include "camera.glsl"
 
 layout(local_size_x = 16, local_size_y = 16) in;
@@ -39,20 +41,38 @@ const uint kTilePx = 8u;  // gpu::kAllocationTilePx
 
 void main() {
   uvec2 pixel = gl_GlobalInvocationID.xy;
-  if (any(greaterThanEqual(pixel, pc.image_size))) return;
-  if ((pc.flags & kFlagNormals) != 0u) {
-    normal_C[pixel.y * pc.image_size.x + pixel.x] = pixelNormal(ivec2(pixel));
+  bool inside = all(lessThan(pixel, pc.image_size));
+  uint lo = 0xFFFFFFFFu;
+  uint hi = 0u;
+  if (inside) {
+    if ((pc.flags & kFlagNormals) != 0u) {
+      normal_C[pixel.y * pc.image_size.x + pixel.x] = pixelNormal(ivec2(pixel));
+    }
+    float depth = depthAt(ivec2(pixel));
+    if (depthValid(depth, pc.min_depth_m, pc.max_depth_m)) {
+      lo = floatBitsToUint(depth);
+      hi = lo;
+    }
   }
-  float depth = depthAt(ivec2(pixel));
-  if (!depthValid(depth, pc.min_depth_m, pc.max_depth_m)) return;
+  // The 4 invocations of a quarter-tile row reduce among themselves, so one atomic pair per run
+  // reaches memory. That needs subgroup lanes in local-index order (every driver known here does
+  // it; the spec does not promise it): a subgroup that is not falls back to one pair per pixel.
+  uint own_lo = lo;
+  uint own_hi = hi;
+  bool in_order = subgroupAll(gl_SubgroupInvocationID == gl_LocalInvocationIndex % gl_SubgroupSize);
+  lo = min(lo, subgroupShuffleXor(lo, 1u));
+  hi = max(hi, subgroupShuffleXor(hi, 1u));
+  lo = min(lo, subgroupShuffleXor(lo, 2u));
+  hi = max(hi, subgroupShuffleXor(hi, 2u));
+  if (!in_order) {
+    lo = own_lo;
+    hi = own_hi;
+  }
+  if (!inside || (in_order && (pixel.x & 3u) != 0u) || lo > hi) return;
   uvec2 tile = pixel / kTilePx;
   uvec2 in_tile = pixel % kTilePx;
   uint q = 4u * (tile.y * pc.tiles_x + tile.x) + (in_tile.x >= kTilePx / 2u ? 1u : 0u) +
            (in_tile.y >= kTilePx / 2u ? 2u : 0u);
-  uint bits = floatBitsToUint(depth);
-  // The stored minimum only falls and the maximum only rises, so a plain read that already
-  // holds this depth makes the atomic unnecessary (most pixels of a quarter stop here).
-  if (bits < quarter_range[q]) atomicMin(quarter_range[q], bits);
-  uint q_max = 4u * pc.tile_count + q;
-  if (bits > quarter_range[q_max]) atomicMax(quarter_range[q_max], bits);
+  atomicMin(quarter_range[q], lo);
+  atomicMax(quarter_range[4u * pc.tile_count + q], hi);
 }
