@@ -10,6 +10,7 @@
 #include "machine_info.h"
 #include "open3d_peer.h"
 #include "preload.h"
+#include "streaming_ceiling.h"
 
 namespace strata::bench {
 namespace {
@@ -77,9 +78,31 @@ Json settingsJson(const FuseBenchOptions& options, const PreloadedFrames& data,
 }
 
 /// One voxel size: device run, reference run, Open3D peer (null: not built).
+/// What the integration kernel moves against the streaming ceiling. Bytes are an upper bound:
+/// every voxel of every touched block read and written (12 + 12 bytes); voxels that project
+/// outside the image or behind the band are skipped by the kernel and move nothing.
+Json ceilingReport(const DeviceRun& run, const StreamingCeiling& ceiling) {
+  double bytes = 0.0;
+  double ms = 0.0;
+  std::size_t n = 0;
+  for (std::size_t i = kWarmupFrames; i < run.frames.size(); ++i) {
+    bytes += static_cast<double>(run.frames[i].touched_blocks) * kVoxelsPerBlock * 2.0 *
+             DeviceTsdfMap::kBytesPerVoxel;
+    ms += run.frames[i].integrate_ms;
+    ++n;
+  }
+  if (n == 0 || ms <= 0.0) return Json();
+  const double gb_per_s = bytes / (ms * 1e6);
+  return Json::object()
+      .set("integrate_voxel_bytes_per_frame_upper", bytes / static_cast<double>(n))
+      .set("integrate_gb_per_s_upper", gb_per_s)
+      .set("streaming_ceiling_gb_per_s", ceiling.gb_per_s)
+      .set("ceiling_fraction_upper", ceiling.gb_per_s > 0.0 ? gb_per_s / ceiling.gb_per_s : 0.0);
+}
+
 Json runVoxelSize(float voxel_size_m, const FuseBenchOptions& options, const PreloadedFrames& data,
-                  std::size_t reference_frames, Open3dPeer* peer, std::string& device_name,
-                  bool& ok) {
+                  std::size_t reference_frames, Open3dPeer* peer,
+                  const StreamingCeiling& ceiling, std::string& device_name, bool& ok) {
   MapConfig config;
   config.voxel_size_m = voxel_size_m;
   config.validate();
@@ -91,7 +114,8 @@ Json runVoxelSize(float voxel_size_m, const FuseBenchOptions& options, const Pre
                     .set("voxel_size_m", static_cast<double>(voxel_size_m))
                     .set("truncation_m", static_cast<double>(config.truncationDistance()))
                     .set("map_config", config.describe())
-                    .set("device", deviceReport(device, ok));
+                    .set("device", deviceReport(device, ok))
+                    .set("integrate_vs_ceiling", ceilingReport(device, ceiling));
   if (reference_frames > 0) {
     std::fprintf(stderr, "voxel %.3f m: C++ reference on %zu frames\n", voxel_size_m,
                  reference_frames);
@@ -126,19 +150,33 @@ int runChecked(FuseBenchOptions options) {
   const std::size_t reference_frames =
       std::min<std::size_t>(static_cast<std::size_t>(options.reference_frames), data.frames.size());
   const std::unique_ptr<Open3dPeer> peer = makeOpen3dPeer(data);  // frames converted, untimed
+  StreamingCeiling ceiling;
+  {
+    vk::ContextOptions context_options;
+    context_options.device_selector = options.device;
+    context_options.log_device = false;
+    auto context = vk::Context::create(context_options);
+    std::fprintf(stderr, "streaming ceiling (copy kernel)\n");
+    ceiling = measureStreamingCeiling(*context);
+  }
   const double rss_before_runs_mib = currentRssMiB();
   Json results = Json::array();
   std::string device_name = "unknown";
   bool ok = true;
   for (const float voxel_size_m : options.voxel_sizes_m) {
     results.push(
-        runVoxelSize(voxel_size_m, options, data, reference_frames, peer.get(), device_name, ok));
+        runVoxelSize(voxel_size_m, options, data, reference_frames, peer.get(), ceiling,
+                     device_name, ok));
   }
   Json report = Json::object()
                     .set("benchmark", "fuse")
                     .set("machine", machineInfo(device_name, load_at_start))
                     .set("settings", settingsJson(options, data, reference_frames,
                                                   rss_before_runs_mib, peer.get()))
+                    .set("streaming_ceiling", Json::object()
+                                                  .set("gb_per_s", ceiling.gb_per_s)
+                                                  .set("buffer_mib", ceiling.buffer_mib)
+                                                  .set("repetitions", ceiling.repetitions))
                     .set("results", results)
                     .set("checks_passed", ok);
   emitReport(report, options.out_path);
