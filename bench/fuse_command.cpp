@@ -67,6 +67,7 @@ Json settingsJson(const FuseBenchOptions& options, const PreloadedFrames& data,
       .set("frames", data.frames.size())
       .set("warmup_frames_excluded", kWarmupFrames)
       .set("reference_frames", reference_frames)
+      .set("prefill_blocks", options.prefill_blocks)
       .set("voxel_sizes_m", voxel_sizes)
       .set("preload_s", data.load_s)
       .set("host_rss_after_preload_mib", data.host_rss_mib)
@@ -108,7 +109,8 @@ Json runVoxelSize(float voxel_size_m, const FuseBenchOptions& options, const Pre
   config.validate();
   std::fprintf(stderr, "voxel %.3f m: device fusion of %zu frames\n", voxel_size_m,
                data.frames.size());
-  const DeviceRun device = runDevice(config, data, options.device);
+  const DeviceRun device =
+      runDevice(config, data, options.device, static_cast<std::uint32_t>(options.prefill_blocks));
   device_name = device.device_name;
   Json result = Json::object()
                     .set("voxel_size_m", static_cast<double>(voxel_size_m))
@@ -133,8 +135,8 @@ Json runVoxelSize(float voxel_size_m, const FuseBenchOptions& options, const Pre
 int runChecked(FuseBenchOptions options) {
   if (options.data_dir.empty()) options.data_dir = defaultDataDir();
   if (options.voxel_sizes_m.empty()) throw InputError("--voxel-sizes is empty");
-  if (options.frames < 0 || options.reference_frames < 0) {
-    throw InputError("--frames and --reference-frames must be >= 0");
+  if (options.frames < 0 || options.reference_frames < 0 || options.prefill_blocks < 0) {
+    throw InputError("--frames, --reference-frames and --prefill-blocks must be >= 0");
   }
   for (const float voxel_size_m : options.voxel_sizes_m) {
     MapConfig config;  // fail before the slow preload
@@ -196,6 +198,9 @@ CLI::App* addFuseCommand(CLI::App& app, FuseBenchOptions& o) {
   fuse->add_option("--frames", o.frames, "Fuse the first N frames (0: all)")->capture_default_str();
   fuse->add_option("--reference-frames", o.reference_frames,
                    "Frames for the C++ reference (slow; 0 skips it)")
+      ->capture_default_str();
+  fuse->add_option("--prefill-blocks", o.prefill_blocks,
+                   "Load this many unobserved blocks far from the scene first (map-size scaling)")
       ->capture_default_str();
   fuse->add_option("--out", o.out_path, "Also write the JSON report here (atomically)");
   fuse->add_option("--device", o.device,

@@ -17,6 +17,7 @@ struct FuseBenchOptions {
   int reference_frames = 20;  // the C++ reference is slow; 0 skips it
   std::string out_path;       // also write the JSON here (atomically)
   std::string device;         // Vulkan device index or name substring
+  int prefill_blocks = 0;     // unobserved blocks far away, loaded before the frames
 };
 
 /// Registers `fuse` on `app`; the options are filled when it parses.

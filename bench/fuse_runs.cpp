@@ -57,7 +57,7 @@ void meshHostMap(DeviceFusion& fusion, DeviceRun& run) {
 }  // namespace
 
 DeviceRun runDevice(const MapConfig& config, const PreloadedFrames& data,
-                    const std::string& device_selector) {
+                    const std::string& device_selector, std::uint32_t prefill_blocks) {
   vk::ContextOptions options;
   options.device_selector = device_selector;
   options.log_device = false;
@@ -66,6 +66,16 @@ DeviceRun runDevice(const MapConfig& config, const PreloadedFrames& data,
   run.device_name = context->deviceName();
   {
     DeviceFusion fusion(*context, config);
+    if (prefill_blocks > 0) {
+      // Unobserved blocks far from the scene (100 km away): a map that is large elsewhere.
+      TsdfMap far(config);
+      const int side = 100;
+      for (std::uint32_t i = 0; i < prefill_blocks; ++i) {
+        const int b = static_cast<int>(i);
+        far.allocateBlock(BlockIndex(600000 + b % side, (b / side) % side, b / (side * side)));
+      }
+      fusion.map().upload(far);
+    }
     const std::size_t count = data.frames.size();
     for (std::size_t i = 0; i < count; ++i) {
       run.frames.push_back(fusion.integrate(data.frames[i], data.intrinsics));

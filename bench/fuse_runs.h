@@ -37,7 +37,7 @@ struct DeviceRun {
 
 /// Fuses every preloaded frame on a fresh Vulkan context, then downloads and meshes the map.
 DeviceRun runDevice(const MapConfig& config, const PreloadedFrames& data,
-                    const std::string& device_selector);
+                    const std::string& device_selector, std::uint32_t prefill_blocks = 0);
 /// The "device" report; `ok` is cleared when the map or the mesh is empty.
 Json deviceReport(const DeviceRun& run, bool& ok);
 
