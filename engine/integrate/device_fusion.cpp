@@ -18,6 +18,16 @@ constexpr VkDeviceSize kGatherArgsOffset = 16;  // integrate_args.comp: args[4..
 
 std::uint32_t divideUp(std::uint32_t a, std::uint32_t b) { return (a + b - 1) / b; }
 
+/// The camera fields every pass's push constants share (K, image size, depth range).
+template <typename Push>
+void setCamera(Push& push, const FrameCamera& camera, const MapConfig& config) {
+  for (int i = 0; i < 4; ++i) push.K[i] = camera.K[i];
+  push.image_size[0] = static_cast<std::uint32_t>(camera.width_px);
+  push.image_size[1] = static_cast<std::uint32_t>(camera.height_px);
+  push.min_depth_m = config.min_depth_m;
+  push.max_depth_m = config.max_depth_m;
+}
+
 struct ArgsPush {
   std::uint32_t touched_capacity;
   std::uint32_t block_capacity;
@@ -84,9 +94,9 @@ void DeviceFusion::reserveAhead() {
   const std::uint32_t wanted_touched =
       std::max(kMinTouchedCapacity, last_touched_count_ + last_touched_count_ / 2);
   if (wanted_touched > touched_capacity_) {
-    touched_capacity_ = wanted_touched;
-    touched_ = vk::Buffer::create(context_, std::uint64_t{touched_capacity_} * 4,
+    touched_ = vk::Buffer::create(context_, std::uint64_t{wanted_touched} * 4,
                                   vk::MemoryUsage::kDeviceLocal, "touched blocks");
+    touched_capacity_ = wanted_touched;
   }
   if (track_touched_ && (!touched_keys_.valid() || touched_keys_.size() < touched_capacity_ * 8ull)) {
     touched_keys_ = vk::Buffer::create(context_, std::uint64_t{touched_capacity_} * 8,
@@ -142,8 +152,7 @@ bool DeviceFusion::growAfterOverflow(const gpu::MapCounters& counters) {
     again = true;
   }
   if (counters.touched_count > touched_capacity_) {
-    last_touched_count_ = counters.touched_count;
-    touched_capacity_ = 0;  // reserveAhead makes a list for this many and a half
+    last_touched_count_ = counters.touched_count;  // reserveAhead sizes the list from it
     again = true;
   }
   if (again) reserveAhead();
@@ -192,11 +201,7 @@ gpu::MapCounters DeviceFusion::runPass(const FrameCamera& camera, bool first_pas
 
 void DeviceFusion::recordNormals(vk::CommandBuffer& cmd, const FrameCamera& camera) {
   gpu::NormalsPush push{};
-  for (int i = 0; i < 4; ++i) push.K[i] = camera.K[i];
-  push.image_size[0] = static_cast<std::uint32_t>(camera.width_px);
-  push.image_size[1] = static_cast<std::uint32_t>(camera.height_px);
-  push.min_depth_m = config().min_depth_m;
-  push.max_depth_m = config().max_depth_m;
+  setCamera(push, camera, config());
   push.max_relative_jump = config().normal_max_relative_jump;
   push.flags = config().distance_mode == DistanceMode::kPointToPlane ? gpu::kNormalsFlagWrite : 0u;
   push.tiles_x = divideUp(push.image_size[0], gpu::kAllocationTilePx);
@@ -211,11 +216,7 @@ void DeviceFusion::recordNormals(vk::CommandBuffer& cmd, const FrameCamera& came
 void DeviceFusion::recordAllocation(vk::CommandBuffer& cmd, const FrameCamera& camera) {
   gpu::AllocatePush push{};
   gpu::storeMatrix(camera.T_W_C, push.T_W_C);
-  for (int i = 0; i < 4; ++i) push.K[i] = camera.K[i];
-  push.image_size[0] = static_cast<std::uint32_t>(camera.width_px);
-  push.image_size[1] = static_cast<std::uint32_t>(camera.height_px);
-  push.min_depth_m = config().min_depth_m;
-  push.max_depth_m = config().max_depth_m;
+  setCamera(push, camera, config());
   push.truncation_m = config().truncationDistance();
   push.block_size_m = config().blockSize();
   push.hash_mask = map_.hashMask();
@@ -243,11 +244,7 @@ void DeviceFusion::recordIntegration(vk::CommandBuffer& cmd, const FrameCamera& 
                                      bool has_color, int layer) {
   gpu::IntegratePush push{};
   gpu::storeMatrix(camera.T_C_W, push.T_C_W);
-  for (int i = 0; i < 4; ++i) push.K[i] = camera.K[i];
-  push.image_size[0] = static_cast<std::uint32_t>(camera.width_px);
-  push.image_size[1] = static_cast<std::uint32_t>(camera.height_px);
-  push.min_depth_m = config().min_depth_m;
-  push.max_depth_m = config().max_depth_m;
+  setCamera(push, camera, config());
   push.voxel_size_m = config().voxel_size_m;
   push.truncation_m = config().truncationDistance();
   push.max_weight = config().max_weight;
@@ -284,10 +281,9 @@ void DeviceFusion::recordTouchedGather(vk::CommandBuffer& cmd) {
 }
 
 void DeviceFusion::readTouchedBlocks(std::uint32_t touched) {
+  // A readback buffer, so always mapped (staged memory too); the submission ended with barrier().
+  const auto* keys = static_cast<const std::uint64_t*>(touched_keys_.mapped());
   last_touched_.resize(touched);
-  if (touched == 0) return;
-  std::vector<std::uint64_t> keys(touched);
-  vk::download(context_, touched_keys_, keys.data(), keys.size() * sizeof(std::uint64_t));
   for (std::uint32_t i = 0; i < touched; ++i) last_touched_[i] = unpackBlockKey(keys[i]);
 }
 

@@ -111,14 +111,19 @@ void DeviceTsdfMap::maintainLoadFactor() {
   }
 }
 
+std::uint64_t DeviceTsdfMap::deviceMaxBlocks() const {
+  return context_.limits().max_memory_allocation_bytes / kBlockBytes;
+}
+
+std::uint64_t DeviceTsdfMap::maxBlocks() const {
+  const std::uint64_t device_max = deviceMaxBlocks();
+  return config_.max_block_capacity > 0
+             ? std::min<std::uint64_t>(device_max, config_.max_block_capacity)
+             : device_max;
+}
+
 void DeviceTsdfMap::reserveBlocks(std::uint32_t blocks) {
-  if (blocks <= block_capacity_) return;
-  const std::uint64_t device_max = context_.limits().max_memory_allocation_bytes / kBlockBytes;
-  std::uint64_t max_blocks = device_max;
-  if (config_.max_block_capacity > 0) {
-    max_blocks = std::min<std::uint64_t>(max_blocks, config_.max_block_capacity);
-  }
-  const auto wanted = static_cast<std::uint32_t>(std::min<std::uint64_t>(blocks, max_blocks));
+  const auto wanted = static_cast<std::uint32_t>(std::min<std::uint64_t>(blocks, maxBlocks()));
   if (wanted <= block_capacity_) return;
   try {
     growPool(wanted);
@@ -128,10 +133,8 @@ void DeviceTsdfMap::reserveBlocks(std::uint32_t blocks) {
 }
 
 void DeviceTsdfMap::growPool(std::uint32_t min_blocks) {
-  const std::uint64_t device_max = context_.limits().max_memory_allocation_bytes / kBlockBytes;
-  const std::uint64_t max_blocks =
-      config_.max_block_capacity > 0 ? std::min<std::uint64_t>(device_max, config_.max_block_capacity)
-                                     : device_max;
+  const std::uint64_t device_max = deviceMaxBlocks();
+  const std::uint64_t max_blocks = maxBlocks();
   if (min_blocks > max_blocks) {
     std::ostringstream msg;
     msg << "TSDF pool full: " << min_blocks << " blocks were asked for but "

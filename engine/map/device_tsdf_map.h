@@ -85,6 +85,9 @@ class DeviceTsdfMap {
   KeySlots readTable();
   void writeTable(const KeySlots& key_slots, std::uint32_t capacity);
   void growPool(std::uint32_t min_blocks);
+  /// Blocks one layer allocation on the device holds, and that capped by max_block_capacity.
+  std::uint64_t deviceMaxBlocks() const;
+  std::uint64_t maxBlocks() const;
   void writeCounters();
   /// Buffer of `blocks` blocks for a layer of `block_bytes` per block (zero-filled when `zero`).
   vk::Buffer makeLayer(std::uint64_t blocks, std::uint64_t block_bytes, const std::string& name,

@@ -189,7 +189,7 @@ std::string Context::describe() const {
     << " valid bits), float32 atomics: add " << (l.float32_atomic_add ? "yes" : "no")
     << ", min/max " << (l.float32_atomic_min_max ? "yes" : "no") << ", validation "
     << (impl_->validation ? "on" : "off") << ", memory "
-    << (impl_->staged_memory ? "staged (STRATA_DEVICE_MEMORY=staged)" : "mapped where unified");
+    << (impl_->staged_memory ? "staged" : "mapped where unified");
   return s.str();
 }
 
