@@ -2,6 +2,7 @@
 // progress on stderr.
 #include <CLI/CLI.hpp>
 
+#include "all_command.h"
 #include "diff_command.h"
 #include "esdf_command.h"
 #include "fuse_command.h"
@@ -27,6 +28,8 @@ int main(int argc, char** argv) {
   CLI::App* occupancy = strata::bench::addOccupancyCommand(app, occupancy_options);
   strata::bench::LcmBenchOptions lcm_options;
   CLI::App* lcm = strata::bench::addLcmCommand(app, lcm_options);
+  strata::bench::AllBenchOptions all_options;
+  CLI::App* all = strata::bench::addAllCommand(app, all_options);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -39,5 +42,6 @@ int main(int argc, char** argv) {
   if (select_cmd->parsed()) return strata::bench::runSelectBench(select_options);
   if (occupancy->parsed()) return strata::bench::runOccupancyBench(occupancy_options);
   if (lcm->parsed()) return strata::bench::runLcmBench(lcm_options);
+  if (all->parsed()) return strata::bench::runAllBench(all_options);
   return 2;
 }

@@ -7,7 +7,7 @@ export DEBIAN_FRONTEND=noninteractive
 PACKAGES=(
   cmake ninja-build g++ pkg-config ccache git
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools
-  libeigen3-dev libopencv-dev libyaml-cpp-dev libcli11-dev
+  libeigen3-dev libopencv-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev libembree-dev
   liblcm-dev liblcm-bin libglib2.0-dev iproute2 util-linux
 )

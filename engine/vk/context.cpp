@@ -183,6 +183,9 @@ std::string Context::describe() const {
     << ", storage buffer range " << l.max_storage_buffer_range_bytes / kBytesPerMiB << " MiB"
     << ", max allocation " << l.max_memory_allocation_bytes / kBytesPerMiB << " MiB"
     << ", device-local heap " << l.device_local_heap_bytes / kBytesPerMiB << " MiB"
+    << " (budget " << (l.device_local_budget_bytes > 0
+                           ? std::to_string(l.device_local_budget_bytes / kBytesPerMiB) + " MiB"
+                           : std::string("not reported")) << ")"
     << ", workgroup invocations " << l.max_workgroup_invocations << ", shared memory "
     << l.max_shared_memory_bytes / 1024 << " KiB, subgroup " << l.subgroup_size
     << ", timestamp period " << l.timestamp_period_ns << " ns (" << l.timestamp_valid_bits

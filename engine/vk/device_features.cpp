@@ -40,6 +40,28 @@ std::uint64_t largestDeviceLocalHeapBytes(const VkPhysicalDeviceMemoryProperties
   return largest;
 }
 
+/// What the driver says this process may still allocate in the largest device-local heap
+/// (VK_EXT_memory_budget: budget minus usage); 0 where the device does not report it.
+std::uint64_t deviceLocalBudgetBytes(const Dispatch& vk, VkPhysicalDevice device) {
+  VkPhysicalDeviceMemoryBudgetPropertiesEXT budget{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MEMORY_BUDGET_PROPERTIES_EXT};
+  VkPhysicalDeviceMemoryProperties2 memory{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MEMORY_PROPERTIES_2,
+                                           &budget};
+  vk.vkGetPhysicalDeviceMemoryProperties2(device, &memory);
+  const VkPhysicalDeviceMemoryProperties& m = memory.memoryProperties;
+  std::uint64_t largest = 0;
+  std::uint64_t available = 0;
+  for (std::uint32_t i = 0; i < m.memoryHeapCount; ++i) {
+    if ((m.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT) == 0) continue;
+    if (m.memoryHeaps[i].size <= largest) continue;
+    largest = m.memoryHeaps[i].size;
+    available = budget.heapBudget[i] > budget.heapUsage[i]
+                    ? budget.heapBudget[i] - budget.heapUsage[i]
+                    : 0;
+  }
+  return available;
+}
+
 }  // namespace
 
 void FeatureChain::link() {
@@ -67,6 +89,7 @@ void querySupportedFeatures(const Dispatch& vk, VkPhysicalDevice device, Feature
   supported.has_atomic_float = hasExtension(extensions, VK_EXT_SHADER_ATOMIC_FLOAT_EXTENSION_NAME);
   supported.has_atomic_float2 =
       hasExtension(extensions, VK_EXT_SHADER_ATOMIC_FLOAT_2_EXTENSION_NAME);
+  supported.has_memory_budget = hasExtension(extensions, VK_EXT_MEMORY_BUDGET_EXTENSION_NAME);
   supported.link();
   vk.vkGetPhysicalDeviceFeatures2(device, &supported.core);
 }
@@ -97,6 +120,10 @@ std::vector<const char*> selectFeatures(const FeatureChain& supported, FeatureCh
     enabled.has_atomic_float2 = true;
     enabled.atomic_float2.shaderBufferFloat32AtomicMinMax = VK_TRUE;
     extensions.push_back(VK_EXT_SHADER_ATOMIC_FLOAT_2_EXTENSION_NAME);
+  }
+  if (supported.has_memory_budget) {
+    enabled.has_memory_budget = true;
+    extensions.push_back(VK_EXT_MEMORY_BUDGET_EXTENSION_NAME);
   }
   enabled.link();
   return extensions;
@@ -142,6 +169,18 @@ std::string missingRequirements(const Dispatch& vk, VkPhysicalDevice device) {
     missing.push_back("subgroup shuffle and vote in compute shaders with subgroups of at least 4 (device: " +
                       std::to_string(v11.subgroupSize) + "-wide)");
   }
+  // The largest workgroups: 8x8x8 (ESDF sweeps, meshing), 256x1x1 and 16x16x1 (see shaders/).
+  const VkPhysicalDeviceLimits& limits = properties.limits;
+  if (limits.maxComputeWorkGroupInvocations < kRequiredWorkgroupInvocations ||
+      limits.maxComputeWorkGroupSize[0] < 256 || limits.maxComputeWorkGroupSize[1] < 16 ||
+      limits.maxComputeWorkGroupSize[2] < 8) {
+    missing.push_back("compute workgroups of " + std::to_string(kRequiredWorkgroupInvocations) +
+                      " invocations and sizes 256x16x8 (device: " +
+                      std::to_string(limits.maxComputeWorkGroupInvocations) + ", " +
+                      std::to_string(limits.maxComputeWorkGroupSize[0]) + "x" +
+                      std::to_string(limits.maxComputeWorkGroupSize[1]) + "x" +
+                      std::to_string(limits.maxComputeWorkGroupSize[2]) + ")");
+  }
   std::string joined;
   for (const std::string& item : missing) joined += (joined.empty() ? "" : ", ") + item;
   return joined;
@@ -171,6 +210,8 @@ DeviceLimits queryLimits(const Dispatch& vk, VkPhysicalDevice device, std::uint3
   limits.device_local_heap_bytes = largestDeviceLocalHeapBytes(memory);
   limits.float32_atomic_add = enabled.has_atomic_float;
   limits.float32_atomic_min_max = enabled.has_atomic_float2;
+  limits.device_local_budget_bytes =
+      enabled.has_memory_budget ? deviceLocalBudgetBytes(vk, device) : 0;
   return limits;
 }
 

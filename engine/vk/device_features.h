@@ -26,6 +26,7 @@ struct FeatureChain {
   // Whether the extension of each optional struct is present (only then is it chained).
   bool has_atomic_float = false;
   bool has_atomic_float2 = false;
+  bool has_memory_budget = false;  // VK_EXT_memory_budget (a query only, no feature struct)
 };
 
 /// The device's features. Only valid for a device with Vulkan >= 1.2.
@@ -36,6 +37,9 @@ std::vector<const char*> selectFeatures(const FeatureChain& supported, FeatureCh
 
 /// A queue family with compute and timestamps, if the device has one.
 std::optional<std::uint32_t> computeQueueFamily(const Dispatch& vk, VkPhysicalDevice device);
+
+/// The largest workgroup a Strata kernel uses (8x8x8).
+constexpr std::uint32_t kRequiredWorkgroupInvocations = 512;
 
 /// "" when `device` has everything Strata requires, otherwise what it lacks, comma-separated
 /// ("Vulkan 1.2 (device has 1.1), shaderBufferInt64Atomics").

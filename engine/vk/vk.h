@@ -46,6 +46,9 @@ struct DeviceLimits {
   double timestamp_period_ns = 1.0;
   std::uint32_t timestamp_valid_bits = 0;
   std::uint64_t device_local_heap_bytes = 0;
+  /// What the process may still allocate in that heap when the context was made
+  /// (VK_EXT_memory_budget: budget minus usage); 0 where the device does not report it.
+  std::uint64_t device_local_budget_bytes = 0;
   /// Optional features, enabled when the device has them (VK_EXT_shader_atomic_float/_float2):
   /// atomicAdd / atomicMin / atomicMax on float32 in storage buffers.
   bool float32_atomic_add = false;
@@ -60,7 +63,8 @@ struct PhysicalDeviceInfo {
 
 /// Instance + logical device + one compute queue. Required features (checked with a clear error):
 /// Vulkan 1.2, shaderInt64, shaderBufferInt64Atomics, bufferDeviceAddress, timestamp queries,
-/// subgroup shuffle and vote in compute (subgroups of at least 4).
+/// subgroup shuffle and vote in compute (subgroups of at least 4), workgroups of 512 invocations
+/// (sizes up to 256x16x8). The memory budget (VK_EXT_memory_budget) is read where present.
 class Context {
  public:
   static std::unique_ptr<Context> create(const ContextOptions& options = {});
