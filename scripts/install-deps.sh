@@ -10,6 +10,7 @@ PACKAGES=(
   libeigen3-dev libopencv-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev libembree-dev
   liblcm-dev liblcm-bin libglib2.0-dev iproute2 util-linux
+  clang libclang-rt-14-dev llvm
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

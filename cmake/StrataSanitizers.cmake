@@ -1,0 +1,26 @@
+# STRATA_SANITIZE: every target of the project built with AddressSanitizer and
+# UndefinedBehaviorSanitizer. Any report ends the process with a non-zero status
+# (-fno-sanitize-recover), so a test that triggers one fails; scripts/sanitize.sh runs the unit and
+# device tests this way. System libraries (Mesa's lavapipe, the Vulkan loader and validation layer,
+# OpenCV, LCM) are not instrumented; their leaks are suppressed by name in
+# scripts/sanitizers/lsan.supp, never ours.
+#
+# STRATA_BUILD_FUZZ: additionally instruments every target for libFuzzer's coverage feedback
+# (-fsanitize=fuzzer-no-link) and builds fuzz/ (needs clang: libFuzzer ships with it). One build
+# tree then serves both the sanitized tests and the fuzz targets.
+if(STRATA_BUILD_FUZZ)
+  if(NOT CMAKE_CXX_COMPILER_ID MATCHES "Clang")
+    message(FATAL_ERROR "STRATA_BUILD_FUZZ=ON needs clang (libFuzzer): configure with CXX=clang++")
+  endif()
+  set(STRATA_SANITIZE ON)
+endif()
+if(STRATA_SANITIZE)
+  set(strata_sanitize_flags -fsanitize=address,undefined -fno-sanitize-recover=all
+                            -fno-omit-frame-pointer -g)
+  if(STRATA_BUILD_FUZZ)
+    list(APPEND strata_sanitize_flags -fsanitize=fuzzer-no-link)
+  endif()
+  add_compile_options(${strata_sanitize_flags})
+  add_link_options(-fsanitize=address,undefined)
+  message(STATUS "strata: sanitizers on (${strata_sanitize_flags})")
+endif()
