@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "core/error.h"
+#include "vk/fault_injection.h"
 #include "vk/internal/context_impl.h"
 #include "vk/result.h"
 
@@ -109,7 +110,10 @@ std::uint32_t allocateAndBind(Context& context, VkBuffer handle, VkDeviceSize si
   VkMemoryAllocateInfo allocate{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, &flags};
   allocate.allocationSize = requirements.size;
   allocate.memoryTypeIndex = type_index;
-  const VkResult allocated = impl.vk.vkAllocateMemory(impl.device, &allocate, nullptr, &memory);
+  // Tests may stand in for a full device here (fault_injection.h); the error path is the same.
+  const VkResult allocated = FaultInjection::failAllocation(name)
+                                 ? VK_ERROR_OUT_OF_DEVICE_MEMORY
+                                 : impl.vk.vkAllocateMemory(impl.device, &allocate, nullptr, &memory);
   if (allocated != VK_SUCCESS) {
     throwAllocationFailure(context, allocated, name, size_bytes, wish.description);
   }
