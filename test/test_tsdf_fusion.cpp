@@ -374,7 +374,7 @@ TEST(TsdfIntegration, FullPoolStopsWithAClearErrorAndKeepsTheMap) {
   }
   TsdfMap after(config);
   fusion.map().download(after);
-  // Every voxel fused before is intact; blocks reserved by the refused frame stay unobserved.
+  // Every voxel fused before is intact; the refused frame leaves no block (or only unobserved).
   for (const auto& [index, block] : before.blocks()) {
     const TsdfBlock* kept = after.findBlock(index);
     ASSERT_NE(kept, nullptr);

@@ -127,11 +127,7 @@ FrameStats DeviceFusion::integrate(const RgbdFrame& frame, const CameraIntrinsic
   stageFrame(frame);
 
   FrameStats stats;
-  const bool has_color = !frame.color.empty();
-  gpu::MapCounters counters = runPass(camera, true, has_color, layer, stats);
-  while (growAfterOverflow(counters)) counters = runPass(camera, false, has_color, layer, stats);
-  // Slots handed out must exist before anything reads them (throws and rolls back if not).
-  map_.commitBlockCount(counters.block_count);
+  const gpu::MapCounters counters = runPasses(camera, !frame.color.empty(), layer, stats);
   stats.touched_blocks = counters.touched_count;
   last_touched_count_ = counters.touched_count;
   last_touched_.clear();
@@ -139,6 +135,23 @@ FrameStats DeviceFusion::integrate(const RgbdFrame& frame, const CameraIntrinsic
   stats.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() -
                                                             wall_start).count();
   return stats;
+}
+
+gpu::MapCounters DeviceFusion::runPasses(const FrameCamera& camera, bool has_color, int layer,
+                                         FrameStats& stats) {
+  const std::uint32_t blocks_before = map_.blockCount();
+  try {
+    gpu::MapCounters counters = runPass(camera, true, has_color, layer, stats);
+    while (growAfterOverflow(counters)) counters = runPass(camera, false, has_color, layer, stats);
+    // Slots handed out must exist before anything reads them (throws and rolls back if not).
+    map_.commitBlockCount(counters.block_count);
+    return counters;
+  } catch (const DeviceError&) {
+    // Only a pass that did not overflow integrates, and none did: refuse the frame whole, so
+    // its blocks neither linger unobserved in the map nor use up the block budget.
+    map_.forgetBlocksFrom(blocks_before);
+    throw;
+  }
 }
 
 bool DeviceFusion::growAfterOverflow(const gpu::MapCounters& counters) {

@@ -4,8 +4,8 @@
 // the integration group counts (integrate_args.comp) and TSDF integration through an indirect
 // dispatch (integrate_tsdf.comp). The pool is grown ahead of the frame so nothing is read back in
 // the middle; when a pass overflows anyway (hash probes, touched list, pool), nothing is
-// integrated, the host grows what filled and runs allocation and integration again.
-// Blocks until the frame is fused.
+// integrated, the host grows what filled and runs allocation and integration again; when it cannot
+// grow, the frame is refused whole (its blocks forgotten). Blocks until the frame is fused.
 // Thread safety: not thread safe; one DeviceFusion per thread.
 #include <cstdint>
 #include <vector>
@@ -60,6 +60,10 @@ class DeviceFusion {
   void stageFrame(const RgbdFrame& frame);
   void ensureFrameBuffers(std::size_t pixel_count, std::uint32_t tile_count);
   void reserveAhead();
+  /// Runs passes until one fits, growing what filled; DeviceError (the frame's blocks forgotten)
+  /// when the map cannot grow.
+  gpu::MapCounters runPasses(const FrameCamera& camera, bool has_color, int layer,
+                             FrameStats& stats);
   /// Records and submits one pass (upload and normals on the first), reads the counters back.
   gpu::MapCounters runPass(const FrameCamera& camera, bool first_pass, bool has_color, int layer,
                            FrameStats& stats);

@@ -87,10 +87,17 @@ void DeviceTsdfMap::writeTable(const KeySlots& key_slots, std::uint32_t capacity
         << kMaxHashCapacity << " entries; use a larger voxel size or a smaller depth range";
     throw DeviceError(msg.str());
   }
-  vk::Buffer entries = vk::Buffer::create(context_, table.size() * sizeof(gpu::HashEntry),
-                                          vk::MemoryUsage::kDeviceLocal, "block hash table");
-  vk::upload(context_, entries, table.data(), table.size() * sizeof(gpu::HashEntry));
-  entries_ = std::move(entries);
+  const std::size_t bytes = table.size() * sizeof(gpu::HashEntry);
+  if (entries_.valid() && entries_.size() == bytes) {
+    // NOTE: in place, so rolling a refused frame back allocates nothing (forgetBlocksFrom).
+    vk::upload(context_, entries_, table.data(), bytes);
+  } else {
+    // A new buffer is filled before it replaces the old one: a failure keeps the old table.
+    vk::Buffer entries = vk::Buffer::create(context_, bytes, vk::MemoryUsage::kDeviceLocal,
+                                            "block hash table");
+    vk::upload(context_, entries, table.data(), bytes);
+    entries_ = std::move(entries);
+  }
   hash_capacity_ = capacity;
 }
 
@@ -189,16 +196,21 @@ void DeviceTsdfMap::commitBlockCount(std::uint32_t block_count) {
     growPool(block_count);
     block_count_ = block_count;
   } catch (const DeviceError&) {
-    // Keep the map consistent: forget the blocks that got no slot, keep everything fused so far.
-    auto key_slots = readTable();
-    key_slots.erase(std::remove_if(key_slots.begin(), key_slots.end(),
-                                   [&](const auto& ks) { return ks.second >= block_capacity_; }),
-                    key_slots.end());
-    writeTable(key_slots, hash_capacity_);
-    block_count_ = block_capacity_;
-    writeCounters();
+    // The pass is refused whole: forget the blocks it allocated, keep everything fused so far.
+    forgetBlocksFrom(block_count_);
     throw;
   }
+}
+
+void DeviceTsdfMap::forgetBlocksFrom(std::uint32_t block_count) {
+  KeySlots key_slots = readTable();
+  key_slots.erase(std::remove_if(key_slots.begin(), key_slots.end(),
+                                 [&](const auto& ks) { return ks.second >= block_count; }),
+                  key_slots.end());
+  // Same capacity, so the table is rewritten in its own buffer: no allocation on a full device.
+  writeTable(key_slots, hash_capacity_);
+  block_count_ = block_count;
+  writeCounters();
 }
 
 void DeviceTsdfMap::download(TsdfMap& out, int layer) {

@@ -2,7 +2,7 @@
 // The block-sparse TSDF map on the device: an open-addressing hash table from block key to pool
 // slot (kernels insert with 64-bit atomics), and the TSDF voxel pool addressed by device address.
 // Both grow on demand; when the device cannot hold more, an error says how many blocks were asked
-// for and the map stays as it was.
+// for and the map stays as it was (new buffers are filled before they replace the old ones).
 // Layers share the block index: TSDF layer 0 is the map every kernel uses by default; more TSDF
 // layers (one per mapping session, a static estimate) and label layers (one uint32 per voxel) can
 // be added. Every layer holds one block per slot and all grow together, so a block allocated for
@@ -54,9 +54,16 @@ class DeviceTsdfMap {
   std::vector<std::pair<BlockIndex, std::uint32_t>> blockSlots();
 
   /// Record that the device handed out `block_count` slots. Grows the pool (device-side copy) when
-  /// they exceed capacity; when the device cannot hold them, removes the blocks that have no slot
-  /// from the table and throws DeviceError naming the number of blocks asked for.
+  /// they exceed capacity; when the device or the block budget cannot hold them, forgets every
+  /// block allocated since the last commit (forgetBlocksFrom) and throws DeviceError naming the
+  /// number of blocks asked for and the limit (max_block_capacity, or the device's memory).
   void commitBlockCount(std::uint32_t block_count);
+  /// Forgets the blocks at slots >= `block_count` (what a refused frame allocated; their voxels
+  /// must never have been integrated), so the index is as it was at that count. Needs no device
+  /// memory where buffers are host-visible (lavapipe, integrated GPUs): the table is rewritten in
+  /// place; with staged memory it needs the context's staging buffers. Slots past the count keep
+  /// zeros (unobserved) because nothing was integrated into them.
+  void forgetBlocksFrom(std::uint32_t block_count);
   /// Rebuilds the hash table with at least `min_capacity` entries (power of two), keeping slots.
   void growHash(std::uint32_t min_capacity);
   /// Grow the table when it is more than half full, so probes stay short.
