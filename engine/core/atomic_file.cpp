@@ -4,12 +4,14 @@
 #include <unistd.h>
 
 #include <array>
+#include <atomic>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 
 #include "core/error.h"
+#include "core/file_faults.h"
 
 namespace strata {
 namespace {
@@ -26,6 +28,92 @@ std::array<std::uint32_t, 256> makeCrcTable() {
   return table;
 }
 
+// Every system call of a write goes through one of these, so a test can stand in for a full or
+// read-only file system (file_faults.h).
+int injectedError(FileStep step) {
+  const int error_number = FileFaultInjection::take(step);
+  if (error_number != 0) errno = error_number;
+  return error_number;
+}
+
+std::uint64_t nextTempNumber() {
+  static std::atomic<std::uint64_t> next{0};
+  return next.fetch_add(1);
+}
+
+/// The temporary beside the target: removed on destruction unless renamed over the target, so no
+/// failure leaves it behind.
+class TempFile {
+ public:
+  explicit TempFile(const std::string& target) : target_(target) {
+    const std::filesystem::path t(target);
+    temp_ = (t.parent_path() / (t.filename().string() + ".tmp." + std::to_string(::getpid()) +
+                                "." + std::to_string(nextTempNumber())))
+                .string();
+    fd_ = injectedError(FileStep::kOpen) != 0
+              ? -1
+              : ::open(temp_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    created_ = fd_ >= 0;
+    if (!created_) {
+      const std::string folder = t.parent_path().empty() ? "." : t.parent_path().string();
+      fail("cannot create a file in folder '" + folder + "'");
+    }
+  }
+  ~TempFile() {
+    if (fd_ >= 0) ::close(fd_);
+    if (created_ && !renamed_) ::unlink(temp_.c_str());
+  }
+  TempFile(const TempFile&) = delete;
+  TempFile& operator=(const TempFile&) = delete;
+
+  void write(const std::vector<std::uint8_t>& bytes) {
+    std::size_t written = 0;
+    while (written < bytes.size()) {
+      const ssize_t n = injectedError(FileStep::kWrite) != 0
+                            ? -1
+                            : ::write(fd_, bytes.data() + written, bytes.size() - written);
+      if (n < 0 && errno == EINTR) continue;
+      if (n < 0) fail("writing '" + temp_ + "' failed");
+      written += static_cast<std::size_t>(n);
+    }
+  }
+
+  /// fsync, then close (always, so a failed flush leaks no descriptor).
+  void flushAndClose() {
+    const bool synced = injectedError(FileStep::kFsync) == 0 && ::fsync(fd_) == 0;
+    const int sync_errno = errno;
+    const bool closed = ::close(fd_) == 0;
+    fd_ = -1;
+    if (!synced) {
+      errno = sync_errno;
+      fail("flushing '" + temp_ + "' to disk failed");
+    }
+    if (!closed) fail("closing '" + temp_ + "' failed");
+  }
+
+  void renameOverTarget() {
+    if (injectedError(FileStep::kRename) != 0 || ::rename(temp_.c_str(), target_.c_str()) != 0) {
+      fail("renaming '" + temp_ + "' over it failed");
+    }
+    renamed_ = true;
+  }
+
+ private:
+  /// Error naming the target, the step and the system's reason (errno as the failed call left
+  /// it); the destructor then removes the temporary.
+  [[noreturn]] void fail(const std::string& step) {
+    const std::string reason = systemReason();
+    throw Error("cannot write '" + target_ + "': " + step + ": " + reason + "; '" + target_ +
+                "' is unchanged");
+  }
+
+  std::string target_;
+  std::string temp_;
+  int fd_ = -1;
+  bool created_ = false;
+  bool renamed_ = false;
+};
+
 }  // namespace
 
 std::uint32_t crc32(const std::uint8_t* data, std::size_t size, std::uint32_t crc) {
@@ -36,34 +124,10 @@ std::uint32_t crc32(const std::uint8_t* data, std::size_t size, std::uint32_t cr
 }
 
 void writeFileAtomically(const std::string& path, const std::vector<std::uint8_t>& bytes) {
-  namespace fs = std::filesystem;
-  const fs::path target(path);
-  const fs::path temp = target.parent_path() /
-                        (target.filename().string() + ".tmp." + std::to_string(::getpid()));
-  const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  if (fd < 0) throw Error("cannot write '" + path + "': " + systemReason());
-  std::size_t written = 0;
-  while (written < bytes.size()) {
-    const ssize_t n = ::write(fd, bytes.data() + written, bytes.size() - written);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      const std::string reason = systemReason();
-      ::close(fd);
-      ::unlink(temp.c_str());
-      throw Error("cannot write '" + path + "': " + reason);
-    }
-    written += static_cast<std::size_t>(n);
-  }
-  if (::fsync(fd) != 0 || ::close(fd) != 0) {
-    const std::string reason = systemReason();
-    ::unlink(temp.c_str());
-    throw Error("cannot write '" + path + "': flushing failed: " + reason);
-  }
-  if (::rename(temp.c_str(), target.c_str()) != 0) {
-    const std::string reason = systemReason();
-    ::unlink(temp.c_str());
-    throw Error("cannot write '" + path + "': rename failed: " + reason);
-  }
+  TempFile temp(path);
+  temp.write(bytes);
+  temp.flushAndClose();
+  temp.renameOverTarget();
 }
 
 std::vector<std::uint8_t> readFile(const std::string& path) {

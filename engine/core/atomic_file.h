@@ -6,9 +6,12 @@
 
 namespace strata {
 
-/// Writes `bytes` to `path` atomically: a temporary file in the same folder, flushed to disk, then
-/// renamed over `path`. On failure the temporary is removed, `path` is untouched, and Error names
-/// the path and the system's reason.
+/// Writes `bytes` to `path` atomically: a temporary file in the same folder (unique per process and
+/// call), flushed to disk, then renamed over `path`. On any failure (full disk, read-only folder,
+/// failed flush or rename) the temporary is removed, `path` keeps its previous bytes (or stays
+/// absent), and Error says "cannot write '<path>': <step>: <system reason>; '<path>' is
+/// unchanged", the step naming the folder when the temporary cannot be created.
+/// Thread safe (concurrent writes of one path: the last rename wins, each file whole).
 void writeFileAtomically(const std::string& path, const std::vector<std::uint8_t>& bytes);
 
 /// Reads a whole file; InputError naming the path when it cannot.
