@@ -1,11 +1,17 @@
 // `strata fuse` on bad input: a clear error naming the problem, a non-zero exit, and nothing that
-// was fused before the bad frame is lost (the map file holds it).
+// was fused before the bad frame is lost (the map file holds it). A map that cannot be saved (full
+// disk, read-only folder) leaves the previous file at the path as it was, and the error says so.
 #include <gtest/gtest.h>
 
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <utility>
 
 #include "cli/fuse_command.h"
+#include "core/atomic_file.h"
+#include "core/file_faults.h"
 #include "io/image_io.h"
 #include "io/tum_writer.h"
 #include "map/map_file.h"
@@ -39,9 +45,10 @@ class FuseCliTest : public ::testing::Test {
     return path;
   }
 
-  int fuse(const std::string& dataset, const std::string& map_name = "map.strata") {
+  int fuse(const std::string& dataset, const std::string& map_name = "map.strata", int frames = 0) {
     apps::FuseOptions options;
     options.dataset = dataset;
+    options.frames = frames;
     options.map_path = (dir_ / map_name).string();
     options.quiet = true;
     testing::internal::CaptureStderr();
@@ -100,6 +107,25 @@ TEST_F(FuseCliTest, MissingFileAndNonFinitePoseAreRefused) {
       << "# timestamp tx ty tz qx qy qz qw\n0.000000 nan 0 0 0 0 0 1\n";
   EXPECT_NE(fuse(nan_pose), 0);
   EXPECT_FALSE(stderr_.empty());
+}
+
+TEST_F(FuseCliTest, FailedSaveExitsNonZeroNamesThePathAndKeepsThePreviousMap) {
+  const std::string dataset = writeDataset("good");
+  const std::string map_path = (dir_ / "map.strata").string();
+  ASSERT_EQ(fuse(dataset, "map.strata", 2), 0) << stderr_;
+  const std::vector<std::uint8_t> previous = readFile(map_path);
+  for (const auto& [step, error_number] : {std::pair{FileStep::kWrite, ENOSPC},
+                                           std::pair{FileStep::kOpen, EROFS}}) {
+    const ScopedFileFault fault(step, error_number);
+    EXPECT_NE(fuse(dataset), 0) << "all frames fused, but the map was not saved";
+    EXPECT_NE(stderr_.find("'" + map_path + "'"), std::string::npos) << stderr_;
+    EXPECT_NE(stderr_.find(std::strerror(error_number)), std::string::npos) << stderr_;
+    EXPECT_NE(stderr_.find("still holds the map saved there before"), std::string::npos)
+        << stderr_;
+    EXPECT_EQ(readFile(map_path), previous) << "the previous map must survive byte for byte";
+  }
+  EXPECT_EQ(fuse(dataset), 0) << "and with the disk back, the new map is saved";
+  EXPECT_NE(readFile(map_path), previous);
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <sstream>
 
 #include "cli/esdf_slice.h"
@@ -124,17 +125,39 @@ bool FuseSession::run() {
 
 bool FuseSession::writeOutputs() {
   if (mapper_) map_ = mapper_->download();
+  // The map first: it is what a failure of any later output must not cost.
+  const bool map_saved = options_.map_path.empty() || saveMapFile();
   if (!options_.mesh_path.empty() || analytic_ != nullptr) mesh_ = extractMesh(map_);
   if (!options_.mesh_path.empty()) {
     writePly(options_.mesh_path, mesh_);
     written_.push_back("mesh " + options_.mesh_path);
   }
-  if (!options_.map_path.empty()) {
-    saveMap(map_, options_.map_path);  // the host copy just downloaded (Mapper::save would again)
-    written_.push_back("map " + options_.map_path);
-  }
   if (!options_.render_path.empty() && fused_ > 0) renderView();
-  return options_.esdf_png_path.empty() || writeEsdfSlice();
+  const bool slice_written = options_.esdf_png_path.empty() || writeEsdfSlice();
+  return map_saved && slice_written;
+}
+
+bool FuseSession::saveMapFile() {
+  try {
+    saveMap(map_, options_.map_path);  // the host copy just downloaded (Mapper::save would again)
+  } catch (const Error& e) {
+    // NOTE: the file is written atomically, so whatever was at the path before is still there:
+    // say so, since that earlier map is all that is left once this process ends.
+    std::fprintf(stderr, "strata fuse: the map was not saved: %s\n", e.what());
+    std::fprintf(stderr, "strata fuse: %s\n", previousMapNote().c_str());
+    map_save_problem_ = e.what();
+    return false;
+  }
+  written_.push_back("map " + options_.map_path);
+  return true;
+}
+
+std::string FuseSession::previousMapNote() const {
+  std::error_code error;
+  if (!std::filesystem::exists(options_.map_path, error)) {
+    return "no map file is at '" + options_.map_path + "'";
+  }
+  return "'" + options_.map_path + "' still holds the map saved there before, unchanged";
 }
 
 bool FuseSession::writeEsdfSlice() {
@@ -211,6 +234,7 @@ void FuseSession::printSummary() const {
   }
   for (const std::string& w : written_) s << " Wrote " << w << ".";
   if (!failure_.empty()) s << " Stopped early: " << failure_;
+  if (!map_save_problem_.empty()) s << " Map not saved (" << previousMapNote() << ").";
   std::printf("%s\n", s.str().c_str());
 }
 

@@ -25,8 +25,9 @@ class FuseSession {
   /// Fuses the frames. Returns false when a frame failed part-way: the error is printed and
   /// everything fused before it is kept (and written by writeOutputs).
   bool run();
-  /// Downloads the map, writes mesh / map / rendering / ESDF slice as requested. Returns false
-  /// when an output could not be made (the reason is printed and kept for the summary).
+  /// Downloads the map, writes map / mesh / rendering / ESDF slice as requested. Returns false
+  /// when the map or the ESDF slice could not be written (the reason is printed and kept for
+  /// the summary); a failed map save leaves the file at the path as it was.
   bool writeOutputs();
   /// One paragraph: frames, blocks, voxels, ms per frame by kernel (ESDF too), memory, device,
   /// accuracy.
@@ -37,6 +38,10 @@ class FuseSession {
   void updateEsdf();
   void renderView();
   bool writeEsdfSlice();
+  /// Saves the map; on failure prints why and what is at the path now, and returns false.
+  bool saveMapFile();
+  /// What a failed save left at the map path (the previous file, or nothing).
+  std::string previousMapNote() const;
   std::string esdfSummary() const;
 
   FuseOptions options_;
@@ -46,6 +51,7 @@ class FuseSession {
   std::unique_ptr<Mapper> mapper_;    // the device path (none with --reference)
   EsdfUpdateStats esdf_totals_;       // summed over frames
   std::string esdf_slice_problem_;    // why the ESDF slice was not written
+  std::string map_save_problem_;      // why the map was not saved
   TsdfMap map_;
   Mesh mesh_;
   std::vector<std::size_t> frame_indices_;
