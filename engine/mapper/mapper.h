@@ -14,8 +14,9 @@
 // with change detection on: integrate() fuses into the session's own layer, once; the static
 // estimate S changes only at endSession(). "The live layer" below is that session layer, or the
 // one TSDF layer when change detection is off; between sessions with change detection on it is S.
-// Errors: bad input throws InputError before anything changes; a full device throws DeviceError
-// and leaves every voxel fused before the frame as it was.
+// Errors: bad input throws InputError before anything changes; a full device or block budget
+// throws DeviceError and refuses the frame whole: the map is exactly as before it, and save()
+// still works (docs/faults.md).
 // Thread safety: not thread safe; one Mapper per thread (the context may be shared only when
 // calls never overlap).
 #include <memory>
