@@ -122,6 +122,11 @@ std::string refusedFrame(Mapper& mapper, const sim::AnalyticDataset& data, std::
   return "";
 }
 
+/// Whether `error` is the injected out-of-memory error (reported, not swallowed or reworded).
+bool isOutOfDeviceMemory(const std::string& error) {
+  return error.find("VK_ERROR_OUT_OF_DEVICE_MEMORY") != std::string::npos;
+}
+
 class DeviceFaults : public ::testing::Test {
  protected:
   void TearDown() override { vk::FaultInjection::disarm(); }
@@ -137,7 +142,7 @@ TEST_F(DeviceFaults, PoolGrowthOutOfDeviceMemoryRefusesTheFrameAndKeepsTheMap) {
   const std::unique_ptr<Mapper> mapper = mapperWithFullPool(data_, pool_blocks);
   const TsdfMap before = mapper->download();
   const std::string error = refusedFrame(*mapper, data_, kFarFrame);
-  EXPECT_NE(error.find("VK_ERROR_OUT_OF_DEVICE_MEMORY"), std::string::npos) << error;
+  EXPECT_TRUE(isOutOfDeviceMemory(error)) << error;
   EXPECT_NE(error.find("TSDF voxel pool"), std::string::npos) << error;
   EXPECT_GT(vk::FaultInjection::failuresInjected(), 0u);
 
@@ -160,7 +165,7 @@ TEST_F(DeviceFaults, DeviceOutOfMemoryForEveryBufferStillKeepsAndSavesTheMap) {
   // From now on the device holds nothing more: the failed growth's clean-up must not allocate.
   vk::FaultInjection::armAllocationFailure({0, vk::FaultInjection::kForever, ""});
   const std::string error = refusedFrame(*mapper, data_, kFarFrame);
-  EXPECT_NE(error.find("VK_ERROR_OUT_OF_DEVICE_MEMORY"), std::string::npos) << error;
+  EXPECT_TRUE(isOutOfDeviceMemory(error)) << error;
 
   // Saving copies the map to the host; where that needs no staging buffer it works while full.
   const std::string path = tempMapPath("device_full");
@@ -175,6 +180,65 @@ TEST_F(DeviceFaults, DeviceOutOfMemoryForEveryBufferStillKeepsAndSavesTheMap) {
   expectLoads(path, before);
   ASSERT_NO_THROW(mapper->integrate(data_.load(kFarFrame), data_.intrinsics()));
   expectSameMap(mapper->download(), faultFreeMap(data_, kFarFrame), "map after fusing it again");
+}
+
+/// A close-up of the surface kFirstFrame looks at (few blocks), then kFirstFrame: at 1 cm voxels
+/// the second frame needs more new blocks than the pool keeps in reserve, so the map grows in the
+/// middle of the session.
+sim::AnalyticDataset growingSession(const sim::AnalyticDataset& data) {
+  const RgbdFrame first = data.load(kFirstFrame);
+  const float centre_depth_m = first.depth.at(first.depth.width_px / 2, first.depth.height_px / 2);
+  Eigen::Isometry3d close_up = first.T_W_C;
+  close_up.translation() += first.T_W_C.linear().col(2) * (centre_depth_m - 0.3);
+  sim::AnalyticDatasetConfig config;
+  config.intrinsics = data.intrinsics();
+  return sim::AnalyticDataset(data.scene(), {close_up, first.T_W_C}, config);
+}
+
+TEST_F(DeviceFaults, TheDeviceFillingUpAtAnyAllocationCostsNoFusedFrame) {
+  if (test::sharedContext().stagedMemory()) {
+    GTEST_SKIP() << "with staged memory, copies to the host need device-side staging buffers";
+  }
+  const sim::AnalyticDataset session = growingSession(data_);
+  MapperConfig config = smallConfig();
+  config.map.voxel_size_m = 0.01f;
+  // A run without faults gives the map to expect and the number of allocations to sweep.
+  vk::FaultInjection::armAllocationFailure({vk::FaultInjection::kForever, 0, ""});
+  TsdfMap expected(config.map);
+  {
+    Mapper mapper(config, test::sharedContext());
+    for (std::size_t f = 0; f < session.size(); ++f) mapper.integrate(session.load(f), session.intrinsics());
+    expected = mapper.download();
+  }
+  const std::uint64_t allocations = vk::FaultInjection::allocationsSeen();
+  ASSERT_GT(allocations, 0u);
+  std::size_t refused_with_a_map = 0;  // refusals after at least one frame was fused
+  for (std::uint64_t k = 0; k < allocations; ++k) {
+    SCOPED_TRACE("the device is full from allocation " + std::to_string(k) + " of " +
+                 std::to_string(allocations));
+    vk::FaultInjection::armAllocationFailure({k, vk::FaultInjection::kForever, ""});
+    std::unique_ptr<Mapper> mapper;
+    try {
+      mapper = std::make_unique<Mapper>(config, test::sharedContext());
+    } catch (const DeviceError& e) {
+      EXPECT_TRUE(isOutOfDeviceMemory(e.what())) << e.what();
+      continue;  // nothing fused yet, nothing to lose
+    }
+    for (std::size_t f = 0; f < session.size(); ++f) {
+      const TsdfMap before = mapper->download();
+      try {
+        mapper->integrate(session.load(f), session.intrinsics());
+      } catch (const DeviceError& e) {
+        EXPECT_TRUE(isOutOfDeviceMemory(e.what())) << e.what();
+        refused_with_a_map += before.blockCount() > 0 ? 1 : 0;
+        expectSameMap(mapper->download(), before, "map after refused frame " + std::to_string(f));
+        vk::FaultInjection::disarm();  // memory is back: the same frame again
+        ASSERT_NO_THROW(mapper->integrate(session.load(f), session.intrinsics()));
+      }
+    }
+    expectSameMap(mapper->download(), expected, "map at the end of the session");
+  }
+  EXPECT_GT(refused_with_a_map, 0u) << "some allocation must fail in the middle of the session";
 }
 
 TEST_F(DeviceFaults, FullBlockBudgetRefusesTheFrameWholeAndLeavesRoomForFramesThatFit) {
