@@ -241,6 +241,34 @@ TEST_F(DeviceFaults, TheDeviceFillingUpAtAnyAllocationCostsNoFusedFrame) {
   EXPECT_GT(refused_with_a_map, 0u) << "some allocation must fail in the middle of the session";
 }
 
+TEST_F(DeviceFaults, WithChangeDetectionEveryLayerIsKeptWhenTheLayersCannotGrow) {
+  const sim::AnalyticDataset session = growingSession(data_);  // close-up, then a wide view
+  MapperConfig config = smallConfig();
+  config.map.voxel_size_m = 0.01f;
+  config.change_detection = true;
+  config.discover_objects = false;
+  config.map.initial_block_capacity = 64;
+  Mapper mapper(config, test::sharedContext());
+  mapper.integrate(session.load(0), session.intrinsics());
+  mapper.beginSession();  // session 1: layers S, 0 and 1, allocated now
+  // From now on no layer's pool can grow (TSDF and label pools alike).
+  vk::FaultInjection::armAllocationFailure({0, vk::FaultInjection::kForever, "pool"});
+  mapper.integrate(session.load(0), session.intrinsics());
+  const TsdfMap session_before = mapper.download();
+  const TsdfMap static_before = mapper.staticMap();
+  const std::string error = refusedFrame(mapper, session, 1);
+  EXPECT_TRUE(isOutOfDeviceMemory(error)) << error;
+  expectSameMap(mapper.download(), session_before, "session layer after the refused frame");
+  expectSameMap(mapper.staticMap(), static_before, "static estimate after the refused frame");
+  const std::string path = tempMapPath("change_detection");
+  ASSERT_NO_THROW(mapper.save(path));
+  vk::FaultInjection::disarm();
+  expectLoads(path, session_before);
+  ASSERT_NO_THROW(mapper.integrate(session.load(1), session.intrinsics()));
+  EXPECT_GT(mapper.blockCount(), session_before.blockCount());
+  EXPECT_NO_THROW(mapper.endSession());
+}
+
 TEST_F(DeviceFaults, FullBlockBudgetRefusesTheFrameWholeAndLeavesRoomForFramesThatFit) {
   MapperConfig config = smallConfig();
   const std::size_t first_blocks = blocksOf(data_, config.map, kFirstFrame).size();
