@@ -1,4 +1,4 @@
-// Saving a map when the file system fails: a full disk, a failed flush or rename, a read-only
+// Saving a map (or a mesh: the same atomic writer) when the file system fails: a full disk, a failed flush or rename, a read-only
 // folder. Each fault comes injected at the system call (FileFaultInjection, always runs) and, where
 // the test may mount file systems (root, no container restriction), for real on a small or
 // read-only tmpfs. Either way: an error naming the path and the system's reason, the previous
@@ -16,6 +16,8 @@
 #include "core/error.h"
 #include "core/file_faults.h"
 #include "map/map_file.h"
+#include "mesh/extract_mesh.h"
+#include "mesh/ply.h"
 
 namespace strata {
 namespace {
@@ -167,6 +169,24 @@ TEST_F(FileFaults, InjectedReadOnlyFolderNamesTheFolderAndKeepsThePreviousFile) 
     const std::string error = injectedFailure(FileStep::kOpen, error_number);
     EXPECT_TRUE(contains(error, "folder '" + dir_.string() + "'")) << error;
   }
+}
+
+TEST_F(FileFaults, InjectedFullDiskWhileWritingAMeshKeepsThePreviousMesh) {
+  const fs::path path = dir_ / "mesh.ply";
+  Mesh triangle;
+  triangle.vertices = {Eigen::Vector3f(0, 0, 0), Eigen::Vector3f(1, 0, 0), Eigen::Vector3f(0, 1, 0)};
+  triangle.triangles = {Eigen::Vector3i(0, 1, 2)};
+  writePly(path.string(), triangle);
+  const std::vector<std::uint8_t> previous = readFile(path.string());
+  const ScopedFileFault fault(FileStep::kWrite, ENOSPC);
+  try {
+    writePly(path.string(), extractMesh(big_));
+    ADD_FAILURE() << "writing the mesh should have failed";
+  } catch (const Error& e) {
+    EXPECT_TRUE(contains(e.what(), path.string())) << e.what();
+    EXPECT_TRUE(contains(e.what(), "No space left on device")) << e.what();
+  }
+  expectPreviousKept(path, previous);
 }
 
 TEST_F(FileFaults, MissingFolderNamesTheFolder) {

@@ -1,16 +1,10 @@
-// writePly: the whole file is serialised in memory, then written to a temporary file in the target
-// directory and renamed over the target (rename within one file system is atomic on POSIX).
-#include <fcntl.h>
-#include <unistd.h>
-
-#include <atomic>
-#include <cerrno>
-#include <cstring>
-#include <filesystem>
+// writePly: the whole file is serialised in memory, then written atomically (core/atomic_file.h:
+// a temporary in the target folder renamed over the target; the old file kept on any failure).
 #include <sstream>
 #include <string>
-#include <system_error>
+#include <vector>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "mesh/ply.h"
 
@@ -64,66 +58,12 @@ std::string serialise(const Mesh& mesh) {
   return out;
 }
 
-/// A temporary file beside the target; removed on destruction unless committed.
-class TempFile {
- public:
-  explicit TempFile(const std::string& target) : target_(target) {
-    static std::atomic<unsigned> counter{0};
-    const std::filesystem::path p(target);
-    path_ = (p.parent_path() / ("." + p.filename().string() + ".tmp." + std::to_string(getpid()) +
-                                "." + std::to_string(counter++)))
-                .string();
-    fd_ = ::open(path_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-    if (fd_ < 0) fail("cannot create temporary file '" + path_ + "'", errno);
-  }
-  ~TempFile() {
-    if (fd_ >= 0) ::close(fd_);
-    if (!committed_) ::unlink(path_.c_str());
-  }
-  TempFile(const TempFile&) = delete;
-  TempFile& operator=(const TempFile&) = delete;
-
-  void write(const std::string& data) {
-    std::size_t done = 0;
-    while (done < data.size()) {
-      const ssize_t n = ::write(fd_, data.data() + done, data.size() - done);
-      if (n < 0 && errno == EINTR) continue;
-      if (n < 0) fail("write failed", errno);
-      done += static_cast<std::size_t>(n);
-    }
-  }
-
-  /// Flushes to disk and renames over the target.
-  void commit() {
-    if (::fsync(fd_) != 0) fail("fsync failed", errno);
-    const int fd = fd_;
-    fd_ = -1;
-    if (::close(fd) != 0) fail("close failed", errno);
-    std::error_code ec;
-    std::filesystem::rename(path_, target_, ec);
-    if (ec) fail("rename from '" + path_ + "' failed", ec.value());
-    committed_ = true;
-  }
-
- private:
-  [[noreturn]] void fail(const std::string& what, int error) const {
-    throw Error("cannot write PLY '" + target_ + "': " + what + ": " + std::strerror(error));
-  }
-
-  std::string target_;
-  std::string path_;
-  int fd_ = -1;
-  bool committed_ = false;
-};
-
 }  // namespace
 
 void writePly(const std::string& path, const Mesh& mesh) {
   checkConsistent(path, mesh);
   const std::string data = serialise(mesh);
-  TempFile file(path);
-  file.write(data);
-  file.commit();
+  writeFileAtomically(path, std::vector<std::uint8_t>(data.begin(), data.end()));
 }
 
 }  // namespace strata
