@@ -114,14 +114,13 @@ TEST_F(FuseCliTest, FailedSaveExitsNonZeroNamesThePathAndKeepsThePreviousMap) {
   const std::string map_path = (dir_ / "map.strata").string();
   ASSERT_EQ(fuse(dataset, "map.strata", 2), 0) << stderr_;
   const std::vector<std::uint8_t> previous = readFile(map_path);
-  for (const auto& [step, error_number] : {std::pair{FileStep::kWrite, ENOSPC},
-                                           std::pair{FileStep::kOpen, EROFS}}) {
+  for (const auto& [step, error_number] :
+       {std::pair{FileStep::kWrite, ENOSPC}, std::pair{FileStep::kOpen, EROFS}}) {
     const ScopedFileFault fault(step, error_number);
     EXPECT_NE(fuse(dataset), 0) << "all frames fused, but the map was not saved";
     EXPECT_NE(stderr_.find("'" + map_path + "'"), std::string::npos) << stderr_;
     EXPECT_NE(stderr_.find(std::strerror(error_number)), std::string::npos) << stderr_;
-    EXPECT_NE(stderr_.find("still holds the map saved there before"), std::string::npos)
-        << stderr_;
+    EXPECT_NE(stderr_.find("still holds the map saved there before"), std::string::npos) << stderr_;
     EXPECT_EQ(readFile(map_path), previous) << "the previous map must survive byte for byte";
   }
   EXPECT_EQ(fuse(dataset), 0) << "and with the disk back, the new map is saved";

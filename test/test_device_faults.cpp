@@ -79,7 +79,8 @@ void expectSameMap(const TsdfMap& actual, const TsdfMap& expected, const std::st
 }
 
 std::string tempMapPath(const std::string& name) {
-  return (std::filesystem::temp_directory_path() / ("strata_test_device_faults_" + name + ".strata"))
+  return (std::filesystem::temp_directory_path() /
+          ("strata_test_device_faults_" + name + ".strata"))
       .string();
 }
 
@@ -207,7 +208,8 @@ TEST_F(DeviceFaults, TheDeviceFillingUpAtAnyAllocationCostsNoFusedFrame) {
   TsdfMap expected(config.map);
   {
     Mapper mapper(config, test::sharedContext());
-    for (std::size_t f = 0; f < session.size(); ++f) mapper.integrate(session.load(f), session.intrinsics());
+    for (std::size_t f = 0; f < session.size(); ++f)
+      mapper.integrate(session.load(f), session.intrinsics());
     expected = mapper.download();
   }
   const std::uint64_t allocations = vk::FaultInjection::allocationsSeen();

@@ -25,7 +25,8 @@ TEST(FaultInjection, SkipsThenFailsCountAllocationsThenNoneOnceDisarmed) {
   EXPECT_EQ(outcomes("any", 3), (std::vector<bool>{false, false, false})) << "off by default";
   {
     const vk::ScopedAllocationFault fault(AllocationFault{2, 3, ""});
-    EXPECT_EQ(outcomes("any", 7), (std::vector<bool>{false, false, true, true, true, false, false}));
+    EXPECT_EQ(outcomes("any", 7),
+              (std::vector<bool>{false, false, true, true, true, false, false}));
     EXPECT_EQ(FaultInjection::allocationsSeen(), 7u);
     EXPECT_EQ(FaultInjection::failuresInjected(), 3u);
   }

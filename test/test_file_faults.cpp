@@ -1,8 +1,9 @@
-// Saving a map (or a mesh: the same atomic writer) when the file system fails: a full disk, a failed flush or rename, a read-only
-// folder. Each fault comes injected at the system call (FileFaultInjection, always runs) and, where
-// the test may mount file systems (root, no container restriction), for real on a small or
-// read-only tmpfs. Either way: an error naming the path and the system's reason, the previous
-// file byte for byte as it was, and no temporary file left behind.
+// Saving a map (or a mesh: the same atomic writer) when the file system fails: a full disk, a
+// failed flush or rename, a read-only folder. Each fault comes injected at the system call
+// (FileFaultInjection, always runs) and, where the test may mount file systems (root, no container
+// restriction), for real on a small or read-only tmpfs. Either way: an error naming the path and
+// the system's reason, the previous file byte for byte as it was, and no temporary file left
+// behind.
 #include <gtest/gtest.h>
 #include <sys/mount.h>
 
@@ -30,7 +31,8 @@ TsdfMap mapOfBlocks(int blocks) {
   for (int b = 0; b < blocks; ++b) {
     TsdfBlock& block = map.allocateBlock(BlockIndex(b, 0, 0));
     for (int i = 0; i < kVoxelsPerBlock; ++i) {
-      block[i] = TsdfVoxel{0.001f * static_cast<float>(i - 256), 1.0f + b, packRgb(static_cast<std::uint8_t>(b), 2, 3)};
+      block[i] = TsdfVoxel{0.001f * static_cast<float>(i - 256), 1.0f + b,
+                           packRgb(static_cast<std::uint8_t>(b), 2, 3)};
     }
   }
   return map;
@@ -174,7 +176,8 @@ TEST_F(FileFaults, InjectedReadOnlyFolderNamesTheFolderAndKeepsThePreviousFile) 
 TEST_F(FileFaults, InjectedFullDiskWhileWritingAMeshKeepsThePreviousMesh) {
   const fs::path path = dir_ / "mesh.ply";
   Mesh triangle;
-  triangle.vertices = {Eigen::Vector3f(0, 0, 0), Eigen::Vector3f(1, 0, 0), Eigen::Vector3f(0, 1, 0)};
+  triangle.vertices = {Eigen::Vector3f(0, 0, 0), Eigen::Vector3f(1, 0, 0),
+                       Eigen::Vector3f(0, 1, 0)};
   triangle.triangles = {Eigen::Vector3i(0, 1, 2)};
   writePly(path.string(), triangle);
   const std::vector<std::uint8_t> previous = readFile(path.string());

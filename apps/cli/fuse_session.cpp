@@ -13,12 +13,12 @@
 #include "cli/shaded_view.h"
 #include "core/error.h"
 #include "eval/accuracy.h"
-#include "io/image_io.h"
-#include "raycast/raycast.h"
 #include "integrate/tsdf_integration.h"
+#include "io/image_io.h"
 #include "map/map_file.h"
 #include "mesh/extract_mesh.h"
 #include "mesh/ply.h"
+#include "raycast/raycast.h"
 #include "sim/analytic_dataset.h"
 
 namespace strata::apps {

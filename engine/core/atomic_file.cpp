@@ -47,8 +47,8 @@ class TempFile {
  public:
   explicit TempFile(const std::string& target) : target_(target) {
     const std::filesystem::path t(target);
-    temp_ = (t.parent_path() / (t.filename().string() + ".tmp." + std::to_string(::getpid()) +
-                                "." + std::to_string(nextTempNumber())))
+    temp_ = (t.parent_path() / (t.filename().string() + ".tmp." + std::to_string(::getpid()) + "." +
+                                std::to_string(nextTempNumber())))
                 .string();
     fd_ = injectedError(FileStep::kOpen) != 0
               ? -1

@@ -93,8 +93,8 @@ void DeviceTsdfMap::writeTable(const KeySlots& key_slots, std::uint32_t capacity
     vk::upload(context_, entries_, table.data(), bytes);
   } else {
     // A new buffer is filled before it replaces the old one: a failure keeps the old table.
-    vk::Buffer entries = vk::Buffer::create(context_, bytes, vk::MemoryUsage::kDeviceLocal,
-                                            "block hash table");
+    vk::Buffer entries =
+        vk::Buffer::create(context_, bytes, vk::MemoryUsage::kDeviceLocal, "block hash table");
     vk::upload(context_, entries, table.data(), bytes);
     entries_ = std::move(entries);
   }

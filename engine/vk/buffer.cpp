@@ -111,9 +111,10 @@ std::uint32_t allocateAndBind(Context& context, VkBuffer handle, VkDeviceSize si
   allocate.allocationSize = requirements.size;
   allocate.memoryTypeIndex = type_index;
   // Tests may stand in for a full device here (fault_injection.h); the error path is the same.
-  const VkResult allocated = FaultInjection::failAllocation(name)
-                                 ? VK_ERROR_OUT_OF_DEVICE_MEMORY
-                                 : impl.vk.vkAllocateMemory(impl.device, &allocate, nullptr, &memory);
+  const VkResult allocated =
+      FaultInjection::failAllocation(name)
+          ? VK_ERROR_OUT_OF_DEVICE_MEMORY
+          : impl.vk.vkAllocateMemory(impl.device, &allocate, nullptr, &memory);
   if (allocated != VK_SUCCESS) {
     throwAllocationFailure(context, allocated, name, size_bytes, wish.description);
   }
