@@ -67,8 +67,11 @@ RayHit resolveHit(const WorldScene::Impl& impl, const RTCRayHit16& packet, int i
 
 void intersectRange(const WorldScene::Impl& impl, const Ray* rays, std::size_t count,
                     RayHit* hits) {
+  // rtcIntersect16 reads the packet and the valid mask with aligned 64-byte loads: both must be
+  // aligned to 64 bytes (a mask that happened to be aligned crashed under AddressSanitizer's
+  // stack layout).
   alignas(64) RTCRayHit16 packet;
-  int valid[kPacket];
+  alignas(64) int valid[kPacket];
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;  // camera rays: neighbours share paths
