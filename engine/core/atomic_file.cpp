@@ -1,6 +1,7 @@
 #include "core/atomic_file.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <array>
@@ -26,6 +27,41 @@ std::array<std::uint32_t, 256> makeCrcTable() {
   return table;
 }
 
+constexpr const char* kTempInfix = ".tmp.";
+
+/// A process killed between creating its temporary and the rename (SIGKILL, power loss) leaves
+/// `<name>.tmp.<pid>` behind; the next write of `<name>` removes those whose process is gone, so
+/// kills never pile temporaries up. A live writer's temporary (another process saving the same
+/// file) is kept.
+void removeStaleTemporaries(const std::filesystem::path& target) {
+  namespace fs = std::filesystem;
+  const std::string prefix = target.filename().string() + kTempInfix;
+  const fs::path folder = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+  std::error_code error;
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder, error)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind(prefix, 0) != 0) continue;
+    const std::string pid_text = name.substr(prefix.size());
+    if (pid_text.empty() || pid_text.find_first_not_of("0123456789") != std::string::npos) continue;
+    const long pid = std::stol(pid_text);
+    if (pid == ::getpid() || (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH)) {
+      fs::remove(entry.path(), error);  // best effort: a leftover never blocks the save
+    }
+  }
+}
+
+/// NOTE: rename() is durable only once the folder's entry is on disk: without this fsync a
+/// power loss after the rename can bring back the old file (or no file) on some filesystems.
+void syncFolder(const std::filesystem::path& target, const std::string& path) {
+  const std::string folder = target.parent_path().empty() ? "." : target.parent_path().string();
+  const int fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY);
+  if (fd < 0) throw Error("cannot write '" + path + "': cannot open its folder: " + systemReason());
+  const int rc = ::fsync(fd);
+  const std::string reason = systemReason();
+  ::close(fd);
+  if (rc != 0) throw Error("cannot write '" + path + "': flushing its folder failed: " + reason);
+}
+
 }  // namespace
 
 std::uint32_t crc32(const std::uint8_t* data, std::size_t size, std::uint32_t crc) {
@@ -38,8 +74,9 @@ std::uint32_t crc32(const std::uint8_t* data, std::size_t size, std::uint32_t cr
 void writeFileAtomically(const std::string& path, const std::vector<std::uint8_t>& bytes) {
   namespace fs = std::filesystem;
   const fs::path target(path);
+  removeStaleTemporaries(target);
   const fs::path temp = target.parent_path() /
-                        (target.filename().string() + ".tmp." + std::to_string(::getpid()));
+                        (target.filename().string() + kTempInfix + std::to_string(::getpid()));
   const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   if (fd < 0) throw Error("cannot write '" + path + "': " + systemReason());
   std::size_t written = 0;
@@ -64,6 +101,7 @@ void writeFileAtomically(const std::string& path, const std::vector<std::uint8_t
     ::unlink(temp.c_str());
     throw Error("cannot write '" + path + "': rename failed: " + reason);
   }
+  syncFolder(target, path);
 }
 
 std::vector<std::uint8_t> readFile(const std::string& path) {

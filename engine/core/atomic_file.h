@@ -6,9 +6,12 @@
 
 namespace strata {
 
-/// Writes `bytes` to `path` atomically: a temporary file in the same folder, flushed to disk, then
-/// renamed over `path`. On failure the temporary is removed, `path` is untouched, and Error names
-/// the path and the system's reason.
+/// Writes `bytes` to `path` atomically: a temporary `<path>.tmp.<pid>` in the same folder, flushed
+/// to disk, renamed over `path`, then the folder flushed (the rename is durable when this returns).
+/// A reader sees the old file or the whole new one, never a torn one, even if the process is
+/// killed at any moment. Temporaries left by killed writers of `path` are removed first. On
+/// failure the temporary is removed, `path` is untouched, and Error names the path and the
+/// system's reason. Thread safety: one writer per path within a process.
 void writeFileAtomically(const std::string& path, const std::vector<std::uint8_t>& bytes);
 
 /// Reads a whole file; InputError naming the path when it cannot.
