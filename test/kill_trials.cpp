@@ -1,0 +1,143 @@
+#include "kill_trials.h"
+
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <random>
+#include <thread>
+
+#include "core/atomic_file.h"
+#include "lcm_process_helpers.h"
+#include "map/map_file.h"
+#include "save_watcher.h"
+
+namespace strata::test {
+namespace {
+
+using Clock = SaveWatcher::Clock;
+
+double secondsBetween(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double>(b - a).count();
+}
+
+void sleepSeconds(double s) { std::this_thread::sleep_for(std::chrono::duration<double>(s)); }
+
+/// waitpid; returns the raw status (-1 when it failed).
+int reap(pid_t pid) {
+  int status = 0;
+  return waitpid(pid, &status, 0) == pid ? status : -1;
+}
+
+bool mapLoads(const std::filesystem::path& path, std::string* why) {
+  try {
+    loadMap(path.string());
+    return true;
+  } catch (const std::exception& e) {
+    *why = e.what();
+    return false;
+  }
+}
+
+/// Ends a program that keeps running after its save (SIGTERM: it saves once more and exits 0).
+void finishRun(const SaveTrial& trial, pid_t pid, SaveWatcher& watcher) {
+  if (!trial.exits_after_save) {
+    EXPECT_TRUE(watcher.waitForRename(trial.timeout_s)) << readText(trial.log);
+    kill(pid, SIGTERM);
+  }
+  const int status = reap(pid);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << readText(trial.log);
+}
+
+/// The checks after kill number `run`; counts its landing.
+void checkKill(const SaveTrial& trial, const SaveWatcher& watcher, int run,
+               const std::vector<std::uint8_t>& previous, KillCounts* counts) {
+  const KillLanding landing = watcher.landing();
+  const std::vector<std::uint8_t> now = readFile(trial.target.string());
+  const bool unchanged = now == previous;
+  std::string why;
+  const bool loads = unchanged || mapLoads(trial.target, &why);
+  EXPECT_TRUE(loads) << "kill " << run << " (" << landingName(landing)
+                     << " the write): the map is neither the previous one nor a complete one: "
+                     << why;
+  if (landing != KillLanding::kAfter) {
+    EXPECT_TRUE(unchanged) << "kill " << run << " landed " << landingName(landing)
+                           << " the rename, yet the map changed";
+  } else if (trial.saves_differ) {
+    EXPECT_FALSE(unchanged) << "kill " << run << " landed after the rename: a new map expected";
+  }
+  const int temporaries = watcher.temporariesPresent();
+  if (landing == KillLanding::kAfter) {
+    EXPECT_EQ(temporaries, 0) << "kill " << run << ": the save left or kept a temporary";
+  }
+  counts->most_temporaries = std::max(counts->most_temporaries, temporaries);
+  ++(landing == KillLanding::kBefore   ? counts->before
+     : landing == KillLanding::kDuring ? counts->during
+                                       : counts->after);
+}
+
+}  // namespace
+
+SaveWindow measureSaveWindow(const SaveTrial& trial) {
+  SaveWatcher watcher(trial.target);
+  const Clock::time_point start = Clock::now();
+  const pid_t pid = spawnProgram(trial.program, trial.arg_variants.front(), trial.log);
+  SaveWindow window;
+  if (pid > 0 && watcher.waitForRename(trial.timeout_s) && watcher.temporaryCreated()) {
+    window.temporary_s = secondsBetween(start, *watcher.temporaryCreated());
+    window.write_s = secondsBetween(*watcher.temporaryCreated(), *watcher.renamed());
+  } else {
+    ADD_FAILURE() << "no save seen in the measuring run: " << readText(trial.log);
+  }
+  if (pid > 0) finishRun(trial, pid, watcher);
+  std::printf("[ save window ] temporary %.3f s after the start, renamed %.1f ms later\n",
+              window.temporary_s, window.write_s * 1e3);
+  return window;
+}
+
+KillCounts killDuringSaves(const SaveTrial& trial, const SaveWindow& window, int kills,
+                           unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> early(0.0, window.temporary_s);
+  std::uniform_real_distribution<double> in_write(0.0, 1.5 * window.write_s);
+  SaveWatcher watcher(trial.target);
+  KillCounts counts;
+  std::vector<std::uint8_t> previous = readFile(trial.target.string());
+  std::size_t saved_variant = 0;  // the variant whose map the file holds
+  for (int run = 0; run < kills; ++run) {
+    watcher.reset();
+    // Another variant than the file's, so that a completed save changes the file.
+    const std::size_t variant = (saved_variant + 1) % trial.arg_variants.size();
+    const auto& args = trial.arg_variants[variant];
+    const pid_t pid = spawnProgram(trial.program, args, trial.log);
+    if (pid <= 0) {
+      ADD_FAILURE() << "cannot start " << trial.program;
+      return counts;
+    }
+    if (run % 5 == 0) {
+      sleepSeconds(early(rng));
+    } else {
+      EXPECT_TRUE(watcher.waitForTemporary(trial.timeout_s)) << readText(trial.log);
+      sleepSeconds(in_write(rng));
+    }
+    kill(pid, SIGKILL);
+    reap(pid);
+    watcher.poll(0.0);
+    checkKill(trial, watcher, run, previous, &counts);
+    if (watcher.landing() == KillLanding::kAfter) saved_variant = variant;
+    previous = readFile(trial.target.string());
+  }
+  std::printf("[ kills ] %d SIGKILLs: %d before the write, %d during, %d after; at most %d "
+              "temporaries at once\n",
+              kills, counts.before, counts.during, counts.after, counts.most_temporaries);
+  watcher.reset();
+  const pid_t pid = spawnProgram(trial.program, trial.arg_variants.front(), trial.log);
+  if (pid > 0) finishRun(trial, pid, watcher);
+  EXPECT_EQ(watcher.temporariesPresent(), 0) << "a completed save removes killed writers' leftovers";
+  std::string why;
+  EXPECT_TRUE(mapLoads(trial.target, &why)) << why;
+  return counts;
+}
+
+}  // namespace strata::test
