@@ -24,25 +24,18 @@ struct SaveTrial {
   double timeout_s = 120.0;
 };
 
-/// From one run of variant 0 to its save: when the temporary appeared after the start, and how
-/// long until the rename.
-struct SaveWindow {
-  double temporary_s = 0.0;
-  double write_s = 0.0;
-};
-SaveWindow measureSaveWindow(const SaveTrial& trial);
-
 struct KillCounts {
   int before = 0, during = 0, after = 0;
   int most_temporaries = 0;  // `<name>.tmp.*` files present at once after a kill
 };
 
-/// `kills` runs, each killed (SIGKILL) at a random moment: one in five at a uniform delay within
-/// [0, temporary_s] of its start (mostly before the write), the others at a uniform delay within
-/// [0, 1.5 write_s] after their temporary appears (during the write, or just after). Checks each
-/// kill with gtest expectations, prints the counts, then runs variant 0 once to the end and
-/// checks that its save removed every temporary left behind.
-KillCounts killDuringSaves(const SaveTrial& trial, const SaveWindow& window, int kills,
-                           unsigned seed);
+/// First one run of variant 0 to its save, measuring when its temporary appears (T after the
+/// start) and how long until the rename (W). Then `kills` runs, each killed (SIGKILL) at a random
+/// moment: one in five at a uniform delay within [0, T] of its start (mostly before the write),
+/// the others at a uniform delay within [0, 1.5 W] after their temporary appears (during the
+/// write, or just after). Checks each kill with gtest expectations (and that some landed during
+/// the write), prints the window and the counts, then runs variant 0 once to the end and checks
+/// that its save removed every temporary left behind.
+KillCounts killDuringSaves(const SaveTrial& trial, int kills, unsigned seed);
 
 }  // namespace strata::test
