@@ -29,23 +29,31 @@ std::array<std::uint32_t, 256> makeCrcTable() {
 
 constexpr const char* kTempInfix = ".tmp.";
 
+/// The writer's pid in `name` = `prefix` + digits; 0 when it is not such a name.
+pid_t temporaryOwner(const std::string& name, const std::string& prefix) {
+  if (name.size() <= prefix.size() || name.size() > prefix.size() + 9) return 0;
+  if (name.compare(0, prefix.size(), prefix) != 0) return 0;
+  const std::string digits = name.substr(prefix.size());
+  if (digits.find_first_not_of("0123456789") != std::string::npos) return 0;
+  return static_cast<pid_t>(std::stol(digits));
+}
+
 /// A process killed between creating its temporary and the rename (SIGKILL, power loss) leaves
 /// `<name>.tmp.<pid>` behind; the next write of `<name>` removes those whose process is gone, so
 /// kills never pile temporaries up. A live writer's temporary (another process saving the same
-/// file) is kept.
+/// file) is kept. NOTE: a writer in another pid namespace looks gone; its rename then fails
+/// cleanly and the file stays whole.
 void removeStaleTemporaries(const std::filesystem::path& target) {
   namespace fs = std::filesystem;
   const std::string prefix = target.filename().string() + kTempInfix;
   const fs::path folder = target.parent_path().empty() ? fs::path(".") : target.parent_path();
-  std::error_code error;
-  for (const fs::directory_entry& entry : fs::directory_iterator(folder, error)) {
-    const std::string name = entry.path().filename().string();
-    if (name.rfind(prefix, 0) != 0) continue;
-    const std::string pid_text = name.substr(prefix.size());
-    if (pid_text.empty() || pid_text.find_first_not_of("0123456789") != std::string::npos) continue;
-    const long pid = std::stol(pid_text);
-    if (pid == ::getpid() || (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH)) {
-      fs::remove(entry.path(), error);  // best effort: a leftover never blocks the save
+  std::error_code error;  // best effort: a leftover never blocks the save
+  for (fs::directory_iterator it(folder, error), end; !error && it != end; it.increment(error)) {
+    const pid_t pid = temporaryOwner(it->path().filename().string(), prefix);
+    if (pid <= 0) continue;
+    if (pid == ::getpid() || (::kill(pid, 0) != 0 && errno == ESRCH)) {
+      std::error_code ignored;
+      fs::remove(it->path(), ignored);
     }
   }
 }
@@ -55,11 +63,15 @@ void removeStaleTemporaries(const std::filesystem::path& target) {
 void syncFolder(const std::filesystem::path& target, const std::string& path) {
   const std::string folder = target.parent_path().empty() ? "." : target.parent_path().string();
   const int fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY);
-  if (fd < 0) throw Error("cannot write '" + path + "': cannot open its folder: " + systemReason());
+  if (fd < 0) {
+    throw Error("'" + path + "' was replaced, but its folder cannot be opened: " + systemReason());
+  }
   const int rc = ::fsync(fd);
   const std::string reason = systemReason();
   ::close(fd);
-  if (rc != 0) throw Error("cannot write '" + path + "': flushing its folder failed: " + reason);
+  if (rc != 0) {
+    throw Error("'" + path + "' was replaced, but flushing its folder failed: " + reason);
+  }
 }
 
 }  // namespace
