@@ -33,7 +33,8 @@ void installStopHandlers() {
 /// The map to continue: --map's file when it exists. A file that does not load (torn, wrong
 /// checksum, other version) is refused with InputError and left as it is: the mapper must not
 /// overwrite the only copy of a map someone may still recover.
-std::optional<strata::TsdfMap> resumeMap(const std::string& path) {
+std::optional<strata::TsdfMap> resumeMap(const strata::apps::MapperOptions& options) {
+  const std::string& path = options.map_path;
   std::error_code error;
   if (path.empty() || !std::filesystem::exists(path, error)) {
     if (!path.empty()) std::fprintf(stderr, "strata-mapper: no map at %s yet: starting empty\n",
@@ -42,8 +43,13 @@ std::optional<strata::TsdfMap> resumeMap(const std::string& path) {
   }
   try {
     strata::TsdfMap map = strata::loadMap(path);
-    std::fprintf(stderr, "strata-mapper: resuming from %s (%zu blocks, %.3f m voxels)\n",
-                 path.c_str(), map.blockCount(), map.config().voxel_size_m);
+    const float voxel_m = map.config().voxel_size_m;
+    std::fprintf(stderr, "strata-mapper: resuming from %s (%zu blocks, %.3f m voxels%s)%s\n",
+                 path.c_str(), map.blockCount(), voxel_m,
+                 voxel_m != options.map.voxel_size_m ? ", the file's, not --voxel-size" : "",
+                 options.change_detection
+                     ? "; change detection: it is the static map of an ended session"
+                     : "");
     return map;
   } catch (const strata::InputError& e) {
     throw strata::InputError(std::string("cannot resume from the map file (left untouched; move "
@@ -54,7 +60,7 @@ std::optional<strata::TsdfMap> resumeMap(const std::string& path) {
 int runMapper(const strata::apps::MapperOptions& options) {
   using namespace strata;
   options.validate();
-  const std::optional<TsdfMap> start_map = resumeMap(options.map_path);  // before the device
+  const std::optional<TsdfMap> start_map = resumeMap(options);  // before the device
   vk::ContextOptions context_options;
   context_options.device_selector = options.device;
   auto context = vk::Context::create(context_options);
