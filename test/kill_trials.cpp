@@ -4,6 +4,7 @@
 #include <signal.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <random>
 #include <thread>
@@ -100,6 +101,44 @@ SaveWindow measureSaveWindow(const SaveTrial& trial) {
   return window;
 }
 
+/// Write durations seen so far (the measuring run, then each kill that landed after the rename;
+/// the watcher reads events while it waits to kill, so their times are exact). The armed delays
+/// follow their median, so that they track the machine's load.
+class WriteDurations {
+ public:
+  explicit WriteDurations(double first_s) : samples_s_{first_s} {}
+  void add(const SaveWatcher& watcher) {
+    if (watcher.temporaryCreated() && watcher.renamed())
+      samples_s_.push_back(secondsBetween(*watcher.temporaryCreated(), *watcher.renamed()));
+  }
+  double median_s() const {
+    std::vector<double> sorted = samples_s_;
+    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+    return sorted[sorted.size() / 2];
+  }
+
+ private:
+  std::vector<double> samples_s_;
+};
+
+/// Starts run `run`, kills it as killDuringSaves() says; false when it could not start.
+bool killOneRun(const SaveTrial& trial, const std::vector<std::string>& args, int run,
+                double early_s, double write_s, std::mt19937& rng, SaveWatcher& watcher) {
+  watcher.reset();
+  const pid_t pid = spawnProgram(trial.program, args, trial.log);
+  if (pid <= 0) return false;
+  if (run % 5 == 0) {
+    sleepSeconds(std::uniform_real_distribution<double>(0.0, early_s)(rng));
+  } else {
+    EXPECT_TRUE(watcher.waitForTemporary(trial.timeout_s)) << readText(trial.log);
+    watcher.watchFor(std::uniform_real_distribution<double>(0.0, write_s)(rng));
+  }
+  kill(pid, SIGKILL);
+  reap(pid);
+  watcher.poll(0.0);
+  return true;
+}
+
 }  // namespace
 
 KillCounts killDuringSaves(const SaveTrial& trial, int kills, unsigned seed) {
@@ -107,37 +146,27 @@ KillCounts killDuringSaves(const SaveTrial& trial, int kills, unsigned seed) {
   const SaveWindow window = measureSaveWindow(trial);
   if (window.temporary_s <= 0.0) return counts;
   std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> early(0.0, window.temporary_s);
-  std::uniform_real_distribution<double> in_write(0.0, 1.5 * window.write_s);
+  WriteDurations durations(window.write_s);
   SaveWatcher watcher(trial.target);
   std::vector<std::uint8_t> previous = readFile(trial.target.string());
   std::size_t saved_variant = 0;  // the variant whose map the file holds
   for (int run = 0; run < kills; ++run) {
-    watcher.reset();
     // Another variant than the file's, so that a completed save changes the file.
     const std::size_t variant = (saved_variant + 1) % trial.arg_variants.size();
-    const auto& args = trial.arg_variants[variant];
-    const pid_t pid = spawnProgram(trial.program, args, trial.log);
-    if (pid <= 0) {
+    if (!killOneRun(trial, trial.arg_variants[variant], run, window.temporary_s,
+                    durations.median_s(), rng, watcher)) {
       ADD_FAILURE() << "cannot start " << trial.program;
       return counts;
     }
-    if (run % 5 == 0) {
-      sleepSeconds(early(rng));
-    } else {
-      EXPECT_TRUE(watcher.waitForTemporary(trial.timeout_s)) << readText(trial.log);
-      sleepSeconds(in_write(rng));
-    }
-    kill(pid, SIGKILL);
-    reap(pid);
-    watcher.poll(0.0);
     checkKill(trial, watcher, run, previous, &counts);
+    durations.add(watcher);
     if (watcher.landing() == KillLanding::kAfter) saved_variant = variant;
     previous = readFile(trial.target.string());
   }
   std::printf("[ kills ] %d SIGKILLs: %d before the write, %d during, %d after; at most %d "
-              "temporaries at once\n",
-              kills, counts.before, counts.during, counts.after, counts.most_temporaries);
+              "temporaries at once; median write %.1f ms\n",
+              kills, counts.before, counts.during, counts.after, counts.most_temporaries,
+              durations.median_s() * 1e3);
   watcher.reset();
   const pid_t pid = spawnProgram(trial.program, trial.arg_variants.front(), trial.log);
   if (pid > 0) finishRun(trial, pid, watcher);

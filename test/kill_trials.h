@@ -32,8 +32,8 @@ struct KillCounts {
 /// First one run of variant 0 to its save, measuring when its temporary appears (T after the
 /// start) and how long until the rename (W). Then `kills` runs, each killed (SIGKILL) at a random
 /// moment: one in five at a uniform delay within [0, T] of its start (mostly before the write),
-/// the others at a uniform delay within [0, 1.5 W] after their temporary appears (during the
-/// write, or just after). Checks each kill with gtest expectations (and that some landed during
+/// the others at a uniform delay within [0, W'] after their temporary appears, W' the median of
+/// the write durations seen so far (most land during the write, some just after). Checks each kill with gtest expectations (and that some landed during
 /// the write), prints the window and the counts, then runs variant 0 once to the end and checks
 /// that its save removed every temporary left behind.
 KillCounts killDuringSaves(const SaveTrial& trial, int kills, unsigned seed);

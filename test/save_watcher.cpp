@@ -75,6 +75,10 @@ bool SaveWatcher::waitFor(Seen seen, double timeout_s) {
   return true;
 }
 
+void SaveWatcher::watchFor(double seconds) {
+  waitFor([] { return false; }, seconds);
+}
+
 bool SaveWatcher::waitForTemporary(double timeout_s) {
   return waitFor([this] { return created_.has_value(); }, timeout_s);
 }

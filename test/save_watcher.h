@@ -27,6 +27,8 @@ class SaveWatcher {
   void reset();
   /// Reads events for up to `timeout_s` (0: only those queued).
   void poll(double timeout_s);
+  /// Keeps reading events for `seconds` (so that their times stay exact).
+  void watchFor(double seconds);
   /// Polls until the temporary was created / the rename landed, or `timeout_s` passes.
   bool waitForTemporary(double timeout_s);
   bool waitForRename(double timeout_s);
