@@ -79,45 +79,67 @@ RecordedOutputs readRecordedOutputs(const fs::path& path) {
   return out;
 }
 
+FrameLogWriter::FrameLogWriter(const fs::path& path, const CameraIntrinsics& intrinsics)
+    : log_(path.string(), "w"), t0_utime_(lcm_io::nowUtime()) {
+  write(lcm_io::kCameraInfoChannel, t0_utime_,
+        lcm_io::encodeCameraInfo(intrinsics, "depth", t0_utime_));
+}
+
+template <typename Message>
+void FrameLogWriter::write(const std::string& channel, std::int64_t utime,
+                           const Message& message) {
+  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(message.getEncodedSize()));
+  message.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+  lcm::LogEvent event{};
+  event.timestamp = utime;
+  event.channel = channel;
+  event.datalen = static_cast<std::int32_t>(bytes.size());
+  event.data = bytes.data();
+  log_.writeEvent(&event);
+}
+
+void FrameLogWriter::frame(const RgbdFrame& frame, int index, double offset_s) {
+  const std::int64_t utime = t0_utime_ + 1000 + static_cast<std::int64_t>(offset_s * 1e6);
+  write(lcm_io::kRgbdChannel, utime,
+        lcm_io::encodeFrame(frame, utime, "depth", index, lcm_io::FrameEncoding{}));
+}
+
+void FrameLogWriter::command(std::int8_t command, std::int64_t request_id, double offset_s) {
+  command_t message{};
+  message.utime = t0_utime_ + 1000 + static_cast<std::int64_t>(offset_s * 1e6);
+  message.request_id = request_id;
+  message.command = command;
+  write(lcm_io::kCommandChannel, message.utime, message);
+}
+
 void writeFrameLog(const fs::path& path, int frames, double period_s) {
   const auto session = roomSession(0, 5);
-  lcm::LogFile log(path.string(), "w");
-  const std::int64_t t0 = lcm_io::nowUtime();
-  const auto write = [&](const std::string& channel, std::int64_t utime, const auto& message) {
-    std::vector<std::uint8_t> bytes(static_cast<std::size_t>(message.getEncodedSize()));
-    message.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
-    lcm::LogEvent event{};
-    event.timestamp = utime;
-    event.channel = channel;
-    event.datalen = static_cast<std::int32_t>(bytes.size());
-    event.data = bytes.data();
-    log.writeEvent(&event);
-  };
-  write(lcm_io::kCameraInfoChannel, t0,
-        lcm_io::encodeCameraInfo(session->intrinsics(), "depth", t0));
+  FrameLogWriter log(path, session->intrinsics());
   for (int i = 0; i < frames; ++i) {
-    const std::int64_t utime = t0 + 1000 + static_cast<std::int64_t>(i * period_s * 1e6);
-    const RgbdFrame frame = session->load(static_cast<std::size_t>(i) % session->size());
-    write(lcm_io::kRgbdChannel, utime,
-          lcm_io::encodeFrame(frame, utime, "depth", i, lcm_io::FrameEncoding{}));
+    log.frame(session->load(static_cast<std::size_t>(i) % session->size()), i, i * period_s);
   }
 }
 
-pid_t spawnMapper(const std::vector<std::string>& args, const fs::path& log) {
+pid_t spawnProgram(const std::string& program, const std::vector<std::string>& args,
+                   const fs::path& log) {
   const pid_t pid = fork();
   if (pid != 0) return pid;
   const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   dup2(fd, STDOUT_FILENO);
   dup2(fd, STDERR_FILENO);
   std::vector<char*> argv;
-  std::string program = STRATA_MAPPER_BIN;
-  argv.push_back(program.data());
+  std::string name = program;
+  argv.push_back(name.data());
   std::vector<std::string> copies = args;
   for (std::string& a : copies) argv.push_back(a.data());
   argv.push_back(nullptr);
-  execv(program.c_str(), argv.data());
-  std::perror("execv strata-mapper");
+  execv(name.c_str(), argv.data());
+  std::perror(("execv " + program).c_str());
   _exit(127);
+}
+
+pid_t spawnMapper(const std::vector<std::string>& args, const fs::path& log) {
+  return spawnProgram(STRATA_MAPPER_BIN, args, log);
 }
 
 MapperSummary parseMapperSummary(const std::string& log) {

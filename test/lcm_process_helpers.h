@@ -8,6 +8,10 @@
 #include <string>
 #include <vector>
 
+#include <lcm/lcm-cpp.hpp>
+
+#include "core/types.h"
+#include "strata/command_t.hpp"
 #include "strata/esdf_slice_t.hpp"
 #include "strata/map_stats_t.hpp"
 #include "strata/mesh_update_t.hpp"
@@ -31,11 +35,31 @@ struct RecordedOutputs {
 };
 RecordedOutputs readRecordedOutputs(const std::filesystem::path& log);
 
+/// Writes an LCM log for the file:// provider: camera info, frames and commands on the mapper's
+/// channels, stamped from the moment it was opened.
+class FrameLogWriter {
+ public:
+  FrameLogWriter(const std::filesystem::path& path, const CameraIntrinsics& intrinsics);
+  /// Frame number `index`, `offset_s` after the log's start.
+  void frame(const RgbdFrame& frame, int index, double offset_s);
+  void command(std::int8_t command, std::int64_t request_id, double offset_s);
+
+ private:
+  template <typename Message>
+  void write(const std::string& channel, std::int64_t utime, const Message& message);
+
+  lcm::LogFile log_;
+  std::int64_t t0_utime_;
+};
+
 /// An LCM log of camera info and `frames` RGB-D frames (the room's first frames, repeated),
 /// `period_s` apart, for the file:// provider.
 void writeFrameLog(const std::filesystem::path& path, int frames, double period_s);
 
-/// Starts strata-mapper with `args`, stdout and stderr to `log`; returns its pid (-1 on failure).
+/// Starts `program` with `args`, stdout and stderr to `log`; returns its pid (-1 on failure).
+pid_t spawnProgram(const std::string& program, const std::vector<std::string>& args,
+                   const std::filesystem::path& log);
+/// spawnProgram of strata-mapper.
 pid_t spawnMapper(const std::vector<std::string>& args, const std::filesystem::path& log);
 
 struct MapperSummary {

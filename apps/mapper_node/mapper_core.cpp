@@ -47,8 +47,11 @@ MapperConfig mapperConfig(const MapperOptions& options) {
   return config;
 }
 
-MapperCore::MapperCore(vk::Context& context, const MapperOptions& options)
-    : options_(validated(options)), mapper_(mapperConfig(options_), context) {}
+MapperCore::MapperCore(vk::Context& context, const MapperOptions& options,
+                       const TsdfMap* start_map)
+    : options_(validated(options)),
+      mapper_(start_map ? Mapper::fromMap(*start_map, context, mapperConfig(options_))
+                        : std::make_unique<Mapper>(mapperConfig(options_), context)) {}
 
 MapperCore::~MapperCore() = default;
 
@@ -57,7 +60,7 @@ bool MapperCore::fuse(const lcm_io::ReadyFrame& ready, keyframe_score_t* score) 
   const bool scored = options_.keyframe_scores && score != nullptr;
   // Before fusing: the score says what the frame adds to the map as it was.
   if (scored) {
-    const KeyframeDecision decision = mapper_.scoreKeyframe(ready.frame, ready.intrinsics);
+    const KeyframeDecision decision = mapper_->scoreKeyframe(ready.frame, ready.intrinsics);
     *score = keyframe_score_t{};
     score->utime = lcm_io::nowUtime();
     score->frame_utime = ready.utime;
@@ -66,8 +69,8 @@ bool MapperCore::fuse(const lcm_io::ReadyFrame& ready, keyframe_score_t* score) 
     score->selected = decision.keyframe;
     score->reason = decision.reason;
   }
-  if (!mapper_.sessionOpen()) session_ = mapper_.beginSession();
-  mapper_.integrate(ready.frame, ready.intrinsics);
+  if (!mapper_->sessionOpen()) session_ = mapper_->beginSession();
+  mapper_->integrate(ready.frame, ready.intrinsics);
   ++frames_fused_;
   last_frame_utime_ = ready.utime;
   last_fuse_ms_ =
@@ -77,44 +80,44 @@ bool MapperCore::fuse(const lcm_io::ReadyFrame& ready, keyframe_score_t* score) 
 }
 
 bool MapperCore::meshUpdate(bool full, std::int64_t utime, mesh_update_t* update) {
-  if (full) mapper_.resetMeshStream();
-  const std::vector<BlockMesh> blocks = mapper_.meshChangedBlocks(blockMeshOptions());
+  if (full) mapper_->resetMeshStream();
+  const std::vector<BlockMesh> blocks = mapper_->meshChangedBlocks(blockMeshOptions());
   if (!full && blocks.empty()) return false;
   *update = mesh_update_t{};
   update->utime = utime;
   update->last_frame_utime = last_frame_utime_;
   update->sequence = mesh_sequence_++;
   update->full = full;
-  update->voxel_size_m = mapper_.config().map.voxel_size_m;
+  update->voxel_size_m = mapper_->config().map.voxel_size_m;
   for (const BlockMesh& block : blocks) update->blocks.push_back(lcm_io::toMessage(block));
   update->num_blocks = static_cast<std::int32_t>(update->blocks.size());
   return true;
 }
 
 bool MapperCore::esdfSlice(std::int64_t utime, esdf_slice_t* slice) {
-  if (!mapper_.config().esdf || frames_fused_ == 0) return false;
-  mapper_.updateEsdf();
-  *slice = lcm_io::makeEsdfSlice(mapper_.esdf(), options_.esdf_slice_z_m, utime);
+  if (!mapper_->config().esdf || frames_fused_ == 0) return false;
+  mapper_->updateEsdf();
+  *slice = lcm_io::makeEsdfSlice(mapper_->esdf(), options_.esdf_slice_z_m, utime);
   slice->last_frame_utime = last_frame_utime_;
   return true;
 }
 
 std::vector<change_event_t> MapperCore::startSession(std::int64_t utime) {
   std::vector<change_event_t> events;
-  if (mapper_.sessionOpen()) events = endSession(utime);
-  session_ = mapper_.beginSession();
+  if (mapper_->sessionOpen()) events = endSession(utime);
+  session_ = mapper_->beginSession();
   return events;
 }
 
 std::vector<change_event_t> MapperCore::stopSession(std::int64_t utime) {
-  if (!mapper_.sessionOpen()) throw InputError("no session is open");
+  if (!mapper_->sessionOpen()) throw InputError("no session is open");
   return endSession(utime);
 }
 
 std::vector<change_event_t> MapperCore::endSession(std::int64_t utime) {
-  const SessionResult result = mapper_.endSession();
+  const SessionResult result = mapper_->endSession();
   std::vector<change_event_t> events;
-  if (!mapper_.config().change_detection) return events;
+  if (!mapper_->config().change_detection) return events;
   for (const change::DiscoveredObject& object : result.objects) {
     events.push_back(
         lcm_io::encodeChangeEvent(object, static_cast<int>(result.objects.size()), utime));
@@ -122,11 +125,11 @@ std::vector<change_event_t> MapperCore::endSession(std::int64_t utime) {
   return events;
 }
 
-TsdfMap MapperCore::downloadMap() { return mapper_.download(); }
+TsdfMap MapperCore::downloadMap() { return mapper_->download(); }
 
 void MapperCore::saveMap(const std::string& path) {
   if (path.empty()) throw InputError("no map path: pass one with the command or --map");
-  mapper_.save(path);
+  mapper_->save(path);
 }
 
 }  // namespace strata::apps

@@ -25,8 +25,13 @@ MapperConfig mapperConfig(const MapperOptions& options);
 
 class MapperCore {
  public:
-  /// `context` must outlive the core. Throws InputError for invalid options.
-  MapperCore(vk::Context& context, const MapperOptions& options);
+  /// `context` must outlive the core. Throws InputError for invalid options. `start_map`
+  /// (optional): the map to continue, e.g. the last one saved before a kill; its voxel size and
+  /// truncation replace the options'. Without change detection, frames then fuse into it exactly
+  /// as they would have into the map that was saved; with it, it is the static estimate of an
+  /// ended session and the next frame opens a new one (Mapper::fromMap).
+  MapperCore(vk::Context& context, const MapperOptions& options,
+             const TsdfMap* start_map = nullptr);
   ~MapperCore();
 
   /// Fuses one frame (opening a session when none is open). Throws InputError for a bad frame
@@ -55,17 +60,17 @@ class MapperCore {
   std::int64_t lastFrameUtime() const { return last_frame_utime_; }
   double lastFuseMs() const { return last_fuse_ms_; }
   double meanFuseMs() const { return frames_fused_ ? total_fuse_ms_ / frames_fused_ : 0.0; }
-  std::uint32_t blocks() const { return mapper_.blockCount(); }
+  std::uint32_t blocks() const { return mapper_->blockCount(); }
   int session() const { return session_; }
-  bool sessionActive() const { return mapper_.sessionOpen(); }
-  const MapConfig& mapConfig() const { return mapper_.config().map; }
-  Mapper& mapper() { return mapper_; }
+  bool sessionActive() const { return mapper_->sessionOpen(); }
+  const MapConfig& mapConfig() const { return mapper_->config().map; }
+  Mapper& mapper() { return *mapper_; }
 
  private:
   std::vector<change_event_t> endSession(std::int64_t utime);
 
   MapperOptions options_;
-  Mapper mapper_;
+  std::unique_ptr<Mapper> mapper_;
   std::int64_t mesh_sequence_ = 0;
   std::int64_t frames_fused_ = 0;
   std::int64_t last_frame_utime_ = 0;

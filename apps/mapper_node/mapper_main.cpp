@@ -1,15 +1,19 @@
 // strata-mapper: the LCM mapping process. Subscribes frames, poses, camera infos and commands;
 // fuses on the device; publishes mesh updates, ESDF slices, map stats and change events; saves
-// the map on command and on SIGINT/SIGTERM.
+// the map on command and on SIGINT/SIGTERM. An existing --map file is loaded at start, so a
+// mapper killed and restarted continues from its last saved map.
 #include <CLI/CLI.hpp>
 #include <atomic>
 #include <csignal>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
+#include <optional>
 
 #include "mapper_node/mapper_core.h"
 #include "mapper_node/mapper_node.h"
 #include "core/error.h"
+#include "map/map_file.h"
 #include "vk/vk.h"
 
 namespace {
@@ -26,13 +30,41 @@ void installStopHandlers() {
   sigaction(SIGTERM, &action, nullptr);
 }
 
+/// The map to continue: --map's file when it exists. A file that does not load (torn, wrong
+/// checksum, other version) is refused with InputError and left as it is: the mapper must not
+/// overwrite the only copy of a map someone may still recover.
+std::optional<strata::TsdfMap> resumeMap(const strata::apps::MapperOptions& options) {
+  const std::string& path = options.map_path;
+  std::error_code error;
+  if (path.empty() || !std::filesystem::exists(path, error)) {
+    if (!path.empty()) std::fprintf(stderr, "strata-mapper: no map at %s yet: starting empty\n",
+                                    path.c_str());
+    return std::nullopt;
+  }
+  try {
+    strata::TsdfMap map = strata::loadMap(path);
+    const float voxel_m = map.config().voxel_size_m;
+    std::fprintf(stderr, "strata-mapper: resuming from %s (%zu blocks, %.3f m voxels%s)%s\n",
+                 path.c_str(), map.blockCount(), voxel_m,
+                 voxel_m != options.map.voxel_size_m ? ", the file's, not --voxel-size" : "",
+                 options.change_detection
+                     ? "; change detection: it is the static map of an ended session"
+                     : "");
+    return map;
+  } catch (const strata::InputError& e) {
+    throw strata::InputError(std::string("cannot resume from the map file (left untouched; move "
+                                         "it away to start an empty map): ") + e.what());
+  }
+}
+
 int runMapper(const strata::apps::MapperOptions& options) {
   using namespace strata;
   options.validate();
+  const std::optional<TsdfMap> start_map = resumeMap(options);  // before the device
   vk::ContextOptions context_options;
   context_options.device_selector = options.device;
   auto context = vk::Context::create(context_options);
-  apps::MapperCore core(*context, options);
+  apps::MapperCore core(*context, options, start_map ? &*start_map : nullptr);
   lcm::LCM input(options.url);
   std::unique_ptr<lcm::LCM> separate_output;
   if (!options.output_url.empty()) separate_output = std::make_unique<lcm::LCM>(options.output_url);

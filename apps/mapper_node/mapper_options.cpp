@@ -33,7 +33,8 @@ void addMapperOptions(CLI::App& app, MapperOptions& o) {
       ->capture_default_str();
   app.add_option("--output-url", o.output_url, "LCM URL to publish on (default: --url)");
   app.add_option("--map", o.map_path,
-                 "Map file written on SAVE_MAP without a path and on SIGINT/SIGTERM ('' = none)")
+                 "Map file: resumed at start when it exists; written on SAVE_MAP without a path and on "
+                 "SIGINT/SIGTERM ('' = none)")
       ->capture_default_str();
   app.add_option("--voxel-size", o.map.voxel_size_m, "Voxel edge, metres")->capture_default_str();
   app.add_option("--max-depth", o.map.max_depth_m, "Ignore depth beyond, metres")

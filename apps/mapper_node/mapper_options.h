@@ -32,7 +32,8 @@ struct MapperOptions {
   MapperChannels channels;
   /// Map settings; the voxel default is 5 cm (a live map on a CPU device keeps up at that size).
   MapConfig map = defaultMapperMapConfig();
-  /// Written atomically on SAVE_MAP without a path and on SIGINT/SIGTERM; "" = not saved on exit.
+  /// Loaded at start when it exists (the mapper resumes it; a corrupt file is refused, untouched);
+  /// written atomically on SAVE_MAP without a path and on SIGINT/SIGTERM; "" = neither.
   std::string map_path = "strata_map.strata";
   /// Mesh updates of changed blocks per second; <= 0: after every fused frame (lowest latency).
   double mesh_rate_hz = 2.0;

@@ -11,8 +11,8 @@ void PlayOptions::validate() const {
   if (dataset.empty()) throw InputError("no dataset: pass a TUM folder or sim:WORLD[:SESSION]");
   if (!std::isfinite(rate) || rate < 0.0) throw InputError("--rate must be >= 0 (0: flow control)");
   if (window < 1) throw InputError("--window must be at least 1 frame");
-  if (frames < 0 || stride < 1 || sim_frames < 0) {
-    throw InputError("--frames and --sim-frames must be >= 0, --stride >= 1");
+  if (first < 0 || frames < 0 || stride < 1 || sim_frames < 0) {
+    throw InputError("--first, --frames and --sim-frames must be >= 0, --stride >= 1");
   }
   if (encoding.depth != "depth16" && encoding.depth != "depth32f") {
     throw InputError("--depth-encoding must be depth16 or depth32f");
@@ -29,6 +29,8 @@ void addPlayOptions(CLI::App& app, PlayOptions& o) {
                  "Speed relative to the recording; 0: as fast as the mapper fuses (flow control)")
       ->capture_default_str();
   app.add_option("--window", o.window, "Flow control: frames sent but not yet fused")
+      ->capture_default_str();
+  app.add_option("--first", o.first, "Start at frame N of the recording (resume a replay)")
       ->capture_default_str();
   app.add_option("--frames", o.frames, "Send at most N frames (0: all)");
   app.add_option("--stride", o.stride, "Send every N-th frame")->capture_default_str();

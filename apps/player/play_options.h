@@ -26,6 +26,7 @@ struct PlayOptions {
   /// control by its map_stats_t: at most `window` frames unaccounted for).
   double rate = 1.0;
   int window = 2;
+  int first = 0;   // index of the first frame sent (a replay resumed where it stopped)
   int frames = 0;  // 0: all
   int stride = 1;
   /// Synthetic sessions: frames kept along the trajectory (0: every frame at 30 Hz).

@@ -29,7 +29,8 @@ class Player {
         publisher_(lcm, channels(options), options.camera_id, encoding(options)),
         watcher_(lcm, options.stats_channel) {
     source_.dataset->intrinsics().validate();
-    for (std::size_t i = 0; i < source_.dataset->size(); i += o_.stride) {
+    for (std::size_t i = static_cast<std::size_t>(o_.first); i < source_.dataset->size();
+         i += o_.stride) {
       if (o_.frames > 0 && indices_.size() >= static_cast<std::size_t>(o_.frames)) break;
       indices_.push_back(i);
     }

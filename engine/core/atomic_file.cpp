@@ -1,6 +1,7 @@
 #include "core/atomic_file.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <array>
@@ -28,6 +29,60 @@ std::array<std::uint32_t, 256> makeCrcTable() {
   return table;
 }
 
+constexpr const char* kTempInfix = ".tmp.";
+
+
+/// The writer's pid in `name` = `prefix` + `<pid>.<call>` or `<pid>` (digits); 0 when it is not
+/// such a name.
+pid_t temporaryOwner(const std::string& name, const std::string& prefix) {
+  if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) return 0;
+  const std::string rest = name.substr(prefix.size());
+  const std::size_t dot = rest.find('.');
+  const std::string pid = rest.substr(0, dot);
+  const std::string call = dot == std::string::npos ? std::string() : rest.substr(dot + 1);
+  const auto digits = [](const std::string& t) {
+    return !t.empty() && t.size() <= 19 && t.find_first_not_of("0123456789") == std::string::npos;
+  };
+  if (!digits(pid) || pid.size() > 9 || (dot != std::string::npos && !digits(call))) return 0;
+  return static_cast<pid_t>(std::stol(pid));
+}
+
+/// A process killed between creating its temporary and the rename (SIGKILL, power loss) leaves
+/// `<name>.tmp.<pid>.<call>` behind; the next write of `<name>` removes those whose process is
+/// gone, so kills never pile temporaries up. A live writer's temporary (another process, or
+/// another thread of this one, saving the same file) is kept. NOTE: a writer in another pid namespace looks gone; its rename then fails
+/// cleanly and the file stays whole.
+void removeStaleTemporaries(const std::filesystem::path& target) {
+  namespace fs = std::filesystem;
+  const std::string prefix = target.filename().string() + kTempInfix;
+  const fs::path folder = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+  std::error_code error;  // best effort: a leftover never blocks the save
+  for (fs::directory_iterator it(folder, error), end; !error && it != end; it.increment(error)) {
+    const pid_t pid = temporaryOwner(it->path().filename().string(), prefix);
+    if (pid <= 0) continue;
+    if (pid != ::getpid() && ::kill(pid, 0) != 0 && errno == ESRCH) {
+      std::error_code ignored;
+      fs::remove(it->path(), ignored);
+    }
+  }
+}
+
+/// NOTE: rename() is durable only once the folder's entry is on disk: without this fsync a
+/// power loss after the rename can bring back the old file (or no file) on some filesystems.
+void syncFolder(const std::filesystem::path& target, const std::string& path) {
+  const std::string folder = target.parent_path().empty() ? "." : target.parent_path().string();
+  const int fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY);
+  if (fd < 0) {
+    throw Error("'" + path + "' was replaced, but its folder cannot be opened: " + systemReason());
+  }
+  const int rc = ::fsync(fd);
+  const std::string reason = systemReason();
+  ::close(fd);
+  if (rc != 0) {
+    throw Error("'" + path + "' was replaced, but flushing its folder failed: " + reason);
+  }
+}
+
 // Every system call of a write goes through one of these, so a test can stand in for a full or
 // read-only file system (file_faults.h).
 int injectedError(FileStep step) {
@@ -47,7 +102,7 @@ class TempFile {
  public:
   explicit TempFile(const std::string& target) : target_(target) {
     const std::filesystem::path t(target);
-    temp_ = (t.parent_path() / (t.filename().string() + ".tmp." + std::to_string(::getpid()) + "." +
+    temp_ = (t.parent_path() / (t.filename().string() + kTempInfix + std::to_string(::getpid()) + "." +
                                 std::to_string(nextTempNumber())))
                 .string();
     fd_ = injectedError(FileStep::kOpen) != 0
@@ -124,10 +179,12 @@ std::uint32_t crc32(const std::uint8_t* data, std::size_t size, std::uint32_t cr
 }
 
 void writeFileAtomically(const std::string& path, const std::vector<std::uint8_t>& bytes) {
+  removeStaleTemporaries(std::filesystem::path(path));
   TempFile temp(path);
   temp.write(bytes);
   temp.flushAndClose();
   temp.renameOverTarget();
+  syncFolder(std::filesystem::path(path), path);
 }
 
 std::vector<std::uint8_t> readFile(const std::string& path) {

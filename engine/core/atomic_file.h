@@ -6,11 +6,14 @@
 
 namespace strata {
 
-/// Writes `bytes` to `path` atomically: a temporary file in the same folder (unique per process and
-/// call), flushed to disk, then renamed over `path`. On any failure (full disk, read-only folder,
-/// failed flush or rename) the temporary is removed, `path` keeps its previous bytes (or stays
-/// absent), and Error says "cannot write '<path>': <step>: <system reason>; '<path>' is
-/// unchanged", the step naming the folder when the temporary cannot be created.
+/// Writes `bytes` to `path` atomically: a temporary `<path>.tmp.<pid>.<call>` in the same folder,
+/// flushed to disk, renamed over `path`, then the folder flushed (the rename is durable when this
+/// returns). A reader sees the old file or the whole new one, never a torn one, even if the process
+/// is killed at any moment; temporaries left by killed writers of `path` are removed first. On any
+/// failure (full disk, read-only folder, failed flush or rename) the temporary is removed, `path`
+/// keeps its previous bytes (or stays absent), and Error says "cannot write '<path>': <step>:
+/// <system reason>; '<path>' is unchanged", the step naming the folder when the temporary cannot
+/// be created. A failed folder flush after the rename says the file was replaced.
 /// Thread safe (concurrent writes of one path: the last rename wins, each file whole).
 void writeFileAtomically(const std::string& path, const std::vector<std::uint8_t>& bytes);
 

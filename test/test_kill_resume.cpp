@@ -1,0 +1,190 @@
+// strata-mapper killed (SIGKILL) after a save and restarted with its --map continues from the
+// saved map: the end result equals an uninterrupted run over the same frames in the same order.
+// Twice: frames from LCM logs through the file:// provider (a queue that holds them all: no frame
+// dropped, no network), and from strata-play over UDP multicast inside a network namespace of
+// its own, with flow control of one frame in flight.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+#include <thread>
+
+#include "core/atomic_file.h"
+#include "lcm/channels.h"
+#include "lcm_process_helpers.h"
+#include "lcm_test_helpers.h"
+#include "map/map_file.h"
+#include "map_compare.h"
+#include "strata/command_t.hpp"
+
+namespace strata::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kFrames = 12;      // the whole session
+constexpr int kFirstPart = 6;    // fused before the kill
+constexpr double kTimeoutS = 120.0;
+
+/// Frames [first, end) of the room's session 0 (kFrames along its path), then SAVE_MAP if asked.
+void writePartLog(const fs::path& path, int first, int end, bool save) {
+  const auto session = roomSession(0, kFrames);
+  FrameLogWriter log(path, session->intrinsics());
+  for (int i = first; i < end; ++i) log.frame(session->load(i), i, 0.05 * (i - first));
+  if (save) log.command(command_t::SAVE_MAP, 1, 0.05 * (end - first));
+}
+
+std::vector<std::string> mapperArgs(const fs::path& log, const fs::path& map) {
+  return {"--url", "file://" + log.string() + "?speed=0", "--output-url", "memq://", "--map",
+          map.string(), "--no-change", "--queue", "64", "--esdf-rate", "0", "--mesh-rate", "0",
+          "--no-keyframe-scores"};
+}
+
+bool waitForLine(const fs::path& log, const std::string& line) {
+  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(kTimeoutS);
+  while (readText(log).find(line) == std::string::npos) {
+    if (std::chrono::steady_clock::now() > end) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return true;
+}
+
+/// Waits for `pid` after `signal`; returns its exit code (-1 when it did not exit normally).
+int stop(pid_t pid, int signal) {
+  kill(pid, signal);
+  int status = 0;
+  if (waitpid(pid, &status, 0) != pid || !WIFEXITED(status)) return -1;
+  return WEXITSTATUS(status);
+}
+
+/// A mapper over `log` until the end of it, then SIGTERM: it fuses what is queued and saves.
+MapperSummary runToEnd(const fs::path& log, const fs::path& map, const fs::path& output) {
+  const pid_t pid = spawnMapper(mapperArgs(log, map), output);
+  EXPECT_GT(pid, 0);
+  EXPECT_TRUE(waitForLine(output, "stopped delivering")) << readText(output);
+  EXPECT_EQ(stop(pid, SIGTERM), 0) << readText(output);
+  return parseMapperSummary(readText(output));
+}
+
+/// The resumed map equals the uninterrupted one voxel for voxel; the map saved before the kill
+/// does not (the second part mattered).
+void expectResumedEqualsWhole(const fs::path& whole_path, const fs::path& saved_path,
+                              const fs::path& resumed_path) {
+  const TsdfMap whole = loadMap(whole_path.string());
+  const TsdfMap resumed = loadMap(resumed_path.string());
+  const MapDifference diff = compareMaps(whole, resumed, 1e-5f, 1e-5f);
+  std::printf("[ resume ] %zu observed voxels compared, %zu distance and %zu weight mismatches, "
+              "max distance difference %.2g m\n",
+              diff.updated_voxels, diff.distance_mismatches, diff.weight_mismatches,
+              diff.max_distance_difference_m);
+  EXPECT_GT(diff.updated_voxels, 10000u);
+  EXPECT_EQ(diff.blocks_only_in_a, 0u);
+  EXPECT_EQ(diff.blocks_only_in_b, 0u);
+  EXPECT_EQ(diff.distance_mismatches, 0u) << "max " << diff.max_distance_difference_m << " m";
+  EXPECT_EQ(diff.weight_mismatches, 0u);
+  const TsdfMap saved = loadMap(saved_path.string());
+  EXPECT_GT(compareMaps(whole, saved, 1e-5f, 1e-5f).weight_mismatches, 1000u);
+}
+
+TEST(MapperResume, KilledAndRestartedFromItsSavedMapEndsAsAnUninterruptedRun) {
+  const fs::path dir = freshTestDir("resume");
+  writePartLog(dir / "whole.lcm", 0, kFrames, false);
+  writePartLog(dir / "first.lcm", 0, kFirstPart, true);
+  writePartLog(dir / "rest.lcm", kFirstPart, kFrames, false);
+
+  EXPECT_EQ(runToEnd(dir / "whole.lcm", dir / "whole.strata", dir / "whole.log").fused, kFrames);
+
+  const fs::path map = dir / "resumed.strata";
+  const pid_t first = spawnMapper(mapperArgs(dir / "first.lcm", map), dir / "first.log");
+  ASSERT_GT(first, 0);
+  ASSERT_TRUE(waitForLine(dir / "first.log", "saved the map")) << readText(dir / "first.log");
+  EXPECT_EQ(stop(first, SIGKILL), -1) << "SIGKILL ends it without its exit save";
+  fs::copy_file(map, dir / "saved.strata");
+
+  const MapperSummary rest = runToEnd(dir / "rest.lcm", map, dir / "rest.log");
+  EXPECT_EQ(rest.fused, kFrames - kFirstPart);
+  EXPECT_NE(readText(dir / "rest.log").find("resuming from " + map.string()), std::string::npos)
+      << readText(dir / "rest.log");
+
+  expectResumedEqualsWhole(dir / "whole.strata", dir / "saved.strata", map);
+  fs::remove_all(dir);
+}
+
+/// Bash (no single quotes) for `unshare --net bash -c`: strata-play sends the room's session to
+/// strata-mapper whole; then its first part with a SAVE_MAP, SIGKILL, a mapper restarted on the
+/// saved map, the rest. Exit codes to dir/rc.txt, logs beside them.
+std::string playResumeScript(const fs::path& dir) {
+  const std::string d = dir.string();
+  const std::string url = lcm_io::kDefaultUrl;
+  std::ostringstream s;
+  s << "ip link set lo up && ip route add 224.0.0.0/4 dev lo || exit 10\n"
+    << "M=\"" << STRATA_MAPPER_BIN << " --url " << url
+    << " --no-change --esdf-rate 0 --mesh-rate 0 --no-keyframe-scores --queue 64\"\n"
+    << "P=\"" << STRATA_PLAY_BIN << " sim:room:0 --sim-frames " << kFrames
+    << " --rate 0 --window 1 --quiet --mapper-timeout 60 --url " << url << "\"\n"
+    << "$M --map " << d << "/whole.strata > " << d << "/whole_mapper.log 2>&1 & MAPPER=$!\n"
+    << "$P > " << d << "/whole_play.log 2>&1; R=\"whole_play=$?\"\n"
+    << "kill -TERM $MAPPER; wait $MAPPER; R=\"$R whole_mapper=$?\"\n"
+    << "$M --map " << d << "/resumed.strata > " << d << "/first_mapper.log 2>&1 & MAPPER=$!\n"
+    << "$P --frames " << kFirstPart << " --no-end-session --save " << d << "/resumed.strata > "
+    << d << "/first_play.log 2>&1; R=\"$R first_play=$?\"\n"
+    << "kill -KILL $MAPPER; wait $MAPPER; R=\"$R first_mapper=$?\"\n"
+    << "cp " << d << "/resumed.strata " << d << "/saved.strata\n"
+    << "$M --map " << d << "/resumed.strata > " << d << "/rest_mapper.log 2>&1 & MAPPER=$!\n"
+    << "$P --first " << kFirstPart << " > " << d << "/rest_play.log 2>&1; R=\"$R rest_play=$?\"\n"
+    << "kill -TERM $MAPPER; wait $MAPPER; R=\"$R rest_mapper=$?\"\n"
+    << "echo $R > " << d << "/rc.txt\n";
+  return s.str();
+}
+
+TEST(MapperResume, ReplayedByStrataPlayKilledAndRestartedEndsAsAnUninterruptedRun) {
+  if (std::system("unshare --net true > /dev/null 2>&1") != 0) {
+    GTEST_SKIP() << "network namespaces are not permitted here ('unshare --net' failed: needs "
+                    "root or CAP_SYS_ADMIN); strata-play talks to strata-mapper over UDP "
+                    "multicast only inside a namespace of its own";
+  }
+  const fs::path dir = freshTestDir("resume_play");
+  const int rc = std::system(("unshare --net bash -c '" + playResumeScript(dir) + "'").c_str());
+  const std::string logs = readText(dir / "first_mapper.log") + readText(dir / "rest_mapper.log");
+  ASSERT_EQ(rc, 0) << logs;
+  // 137: killed by SIGKILL (128 + 9), so without its exit save.
+  EXPECT_EQ(readText(dir / "rc.txt"),
+            "whole_play=0 whole_mapper=0 first_play=0 first_mapper=137 rest_play=0 "
+            "rest_mapper=0\n")
+      << logs;
+  EXPECT_EQ(parseMapperSummary(readText(dir / "whole_mapper.log")).fused, kFrames);
+  EXPECT_EQ(parseMapperSummary(readText(dir / "rest_mapper.log")).fused, kFrames - kFirstPart);
+  EXPECT_NE(readText(dir / "first_mapper.log").find("saved the map (" + std::to_string(kFirstPart)),
+            std::string::npos)
+      << logs;
+  EXPECT_NE(readText(dir / "rest_mapper.log").find("resuming from"), std::string::npos) << logs;
+  expectResumedEqualsWhole(dir / "whole.strata", dir / "saved.strata", dir / "resumed.strata");
+  fs::remove_all(dir);
+}
+
+TEST(MapperResume, ACorruptMapFileIsRefusedAndLeftAsItIs) {
+  const fs::path dir = freshTestDir("resume_corrupt");
+  writePartLog(dir / "frames.lcm", 0, 2, false);
+  const fs::path map = dir / "map.strata";
+  const std::string torn = "STRATAMP and then nothing a map file holds";
+  writeFileAtomically(map.string(), std::vector<std::uint8_t>(torn.begin(), torn.end()));
+  const pid_t pid = spawnMapper(mapperArgs(dir / "frames.lcm", map), dir / "mapper.log");
+  ASSERT_GT(pid, 0);
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  const std::string log = readText(dir / "mapper.log");
+  ASSERT_TRUE(WIFEXITED(status)) << log;
+  EXPECT_EQ(WEXITSTATUS(status), 2) << log;
+  EXPECT_NE(log.find("cannot resume from the map file"), std::string::npos) << log;
+  const std::vector<std::uint8_t> after = readFile(map.string());
+  EXPECT_EQ(std::string(after.begin(), after.end()), torn) << "the file was overwritten";
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace strata::test
