@@ -1,6 +1,6 @@
 #pragma once
 // The soak's figure: the mapper's resident memory (RSS, peak) over the run above its device
-// memory, session ends as thin vertical lines. Pure: no I/O (writeChartPng writes it).
+// memory, session ends as thin vertical lines (every n-th one when there are many). Pure: no I/O (writeChartPng writes it).
 #include <opencv2/core.hpp>
 #include <vector>
 
