@@ -1,24 +1,18 @@
 #include "all_command.h"
 
 #include <CLI/CLI.hpp>
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
-
 #include <chrono>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "child_process.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "machine_info.h"
 #include "suite_plots.h"
-
-extern char** environ;
 
 namespace strata::bench {
 namespace {
@@ -59,24 +53,7 @@ bool selected(const AllBenchOptions& o, const Run& run) {
 /// Runs this executable with `args`, stdout to /dev/null (the report goes to --out), stderr
 /// shared so progress shows. Returns the exit code (128 + signal when killed).
 int runChild(const std::vector<std::string>& args) {
-  const std::string self = fs::read_symlink("/proc/self/exe").string();
-  std::vector<char*> argv;
-  argv.push_back(const_cast<char*>(self.c_str()));
-  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
-  pid_t pid = 0;
-  const int spawned = posix_spawn(&pid, self.c_str(), &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (spawned != 0) throw Error("could not start " + self + ": " + std::strerror(spawned));
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0) {
-    if (errno != EINTR) throw Error(std::string("waitpid failed: ") + std::strerror(errno));
-  }
-  if (WIFEXITED(status)) return WEXITSTATUS(status);
-  return WIFSIGNALED(status) ? 128 + WTERMSIG(status) : 1;
+  return waitProcess(spawnProcess(selfExecutable(), args, "/dev/null"));
 }
 
 json readReport(const fs::path& path) {

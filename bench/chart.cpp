@@ -22,6 +22,7 @@ constexpr int kTopPx = 60;
 constexpr int kBottomPx = 470;
 const cv::Scalar kInk(40, 40, 40);
 const cv::Scalar kGrid(225, 225, 225);
+constexpr ChartColor kMarkColor = {190, 190, 190};  // event lines: visible, behind the data
 constexpr int kFont = cv::FONT_HERSHEY_SIMPLEX;
 
 cv::Scalar bgr(const ChartColor& c) { return cv::Scalar(c[2], c[1], c[0]); }
@@ -199,6 +200,13 @@ cv::Mat drawLineChart(const LineChart& chart) {
   }
   text(image, chart.x_label, {(kLeftPx + kRightPx) / 2, kBottomPx + 45}, 0.45, kInk, true);
   std::vector<std::pair<std::string, ChartColor>> entries;
+  for (const double x : chart.x_marks) {
+    if (x < ax.min || x > ax.max) continue;
+    cv::line(image, {xPx(ax, x), kTopPx}, {xPx(ax, x), kBottomPx}, bgr(kMarkColor), 1);
+  }
+  if (!chart.x_marks.empty() && !chart.x_marks_label.empty()) {
+    entries.emplace_back(chart.x_marks_label, kMarkColor);
+  }
   for (const LineSeries& s : chart.series) {
     entries.emplace_back(s.name, s.color);
     std::vector<cv::Point> polyline;
@@ -208,6 +216,7 @@ cv::Mat drawLineChart(const LineChart& chart) {
     if (polyline.size() > 1) {
       cv::polylines(image, polyline, false, bgr(s.color), 2, cv::LINE_AA);
     }
+    if (!chart.point_markers) continue;
     for (const cv::Point& p : polyline) cv::circle(image, p, 4, bgr(s.color), cv::FILLED);
   }
   legend(image, entries);

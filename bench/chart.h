@@ -53,6 +53,12 @@ struct LineChart {
   std::string y_label;
   std::vector<LineSeries> series;
   bool y_from_zero = true;
+  /// A dot on every point (false for long time series, where dots hide the line).
+  bool point_markers = true;
+  /// Thin vertical lines at these x values (events, e.g. session boundaries), labelled in the
+  /// legend by x_marks_label when not empty.
+  std::vector<double> x_marks;
+  std::string x_marks_label;
 };
 
 /// 960x540 images. Empty charts (no bars or no points) draw the axes and "no data".

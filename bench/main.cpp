@@ -10,6 +10,7 @@
 #include "select_command.h"
 #include "occupancy_command.h"
 #include "sim_command.h"
+#include "soak_command.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"strata-bench: Strata benchmarks (JSON on stdout, progress on stderr)"};
@@ -28,6 +29,8 @@ int main(int argc, char** argv) {
   CLI::App* occupancy = strata::bench::addOccupancyCommand(app, occupancy_options);
   strata::bench::LcmBenchOptions lcm_options;
   CLI::App* lcm = strata::bench::addLcmCommand(app, lcm_options);
+  strata::bench::SoakBenchOptions soak_options;
+  CLI::App* soak = strata::bench::addSoakCommand(app, soak_options);
   strata::bench::AllBenchOptions all_options;
   CLI::App* all = strata::bench::addAllCommand(app, all_options);
   try {
@@ -42,6 +45,7 @@ int main(int argc, char** argv) {
   if (select_cmd->parsed()) return strata::bench::runSelectBench(select_options);
   if (occupancy->parsed()) return strata::bench::runOccupancyBench(occupancy_options);
   if (lcm->parsed()) return strata::bench::runLcmBench(lcm_options);
+  if (soak->parsed()) return strata::bench::runSoakBench(soak_options);
   if (all->parsed()) return strata::bench::runAllBench(all_options);
   return 2;
 }

@@ -37,6 +37,7 @@ MapperConfig mapperConfig(const MapperOptions& options) {
     change_map.max_block_capacity = options.map.max_block_capacity;
     config.map = change_map;
     config.change_detection = true;
+    config.release_ended_sessions = true;  // a live mapper runs session after session
     config.change.min_weight = options.change_min_weight;
     config.change.difference_threshold_m =
         options.change_threshold_voxels * options.map.voxel_size_m;
@@ -49,7 +50,8 @@ MapperConfig mapperConfig(const MapperOptions& options) {
 
 MapperCore::MapperCore(vk::Context& context, const MapperOptions& options,
                        const TsdfMap* start_map)
-    : options_(validated(options)),
+    : context_(context),
+      options_(validated(options)),
       mapper_(start_map ? Mapper::fromMap(*start_map, context, mapperConfig(options_))
                         : std::make_unique<Mapper>(mapperConfig(options_), context)) {}
 

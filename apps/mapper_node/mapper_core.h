@@ -61,6 +61,8 @@ class MapperCore {
   double lastFuseMs() const { return last_fuse_ms_; }
   double meanFuseMs() const { return frames_fused_ ? total_fuse_ms_ / frames_fused_ : 0.0; }
   std::uint32_t blocks() const { return mapper_->blockCount(); }
+  /// Bytes held in device buffers by the context (vk::Context::allocatedBytes()).
+  std::uint64_t deviceBytes() const { return context_.allocatedBytes(); }
   int session() const { return session_; }
   bool sessionActive() const { return mapper_->sessionOpen(); }
   const MapConfig& mapConfig() const { return mapper_->config().map; }
@@ -69,6 +71,7 @@ class MapperCore {
  private:
   std::vector<change_event_t> endSession(std::int64_t utime);
 
+  vk::Context& context_;
   MapperOptions options_;
   std::unique_ptr<Mapper> mapper_;
   std::int64_t mesh_sequence_ = 0;

@@ -192,6 +192,7 @@ map_stats_t MapperNode::stats(std::int64_t utime) const {
   s.queue_depth = static_cast<std::int32_t>(queue_.size());
   s.queue_capacity = static_cast<std::int32_t>(queue_.capacity());
   s.blocks = core_.blocks();
+  s.device_bytes = static_cast<std::int64_t>(core_.deviceBytes());
   s.fuse_ms_last = static_cast<float>(core_.lastFuseMs());
   s.fuse_ms_mean = static_cast<float>(core_.meanFuseMs());
   s.last_frame_utime = core_.lastFrameUtime();

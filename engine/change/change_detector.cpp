@@ -34,6 +34,28 @@ void ChangeDetector::requireSession(int session, const char* what) const {
   }
 }
 
+void ChangeDetector::requireLayers(int session, const char* what) const {
+  requireSession(session, what);
+  if (sessions_[session].released) {
+    throw InputError(std::string(what) + ": session " + std::to_string(session) +
+                     " was released (its layers now hold a later session)");
+  }
+}
+
+int ChangeDetector::sessionLayer(int session) const {
+  requireLayers(session, "sessionLayer");
+  return backend_->sessionTsdfLayer(session);
+}
+
+void ChangeDetector::releaseSession(int session) {
+  requireLayers(session, "releaseSession");
+  if (!sessions_[session].ended) {
+    throw InputError("releaseSession: session " + std::to_string(session) + " has not ended");
+  }
+  backend_->releaseSession(session);
+  sessions_[session].released = true;
+}
+
 int ChangeDetector::beginSession() {
   const int session = sessionCount();
   backend_->addSession(session);
@@ -98,14 +120,14 @@ ChangeUpdateStats ChangeDetector::endSession(int session) {
 TsdfMap ChangeDetector::staticMap() { return backend_->staticMap(); }
 
 TsdfMap ChangeDetector::sessionMap(int session) {
-  requireSession(session, "sessionMap");
+  requireLayers(session, "sessionMap");
   return backend_->sessionMap(session);
 }
 
 LabelMap ChangeDetector::labels() { return backend_->labels(); }
 
 LabelMap ChangeDetector::sessionDynamic(int session) {
-  requireSession(session, "sessionDynamic");
+  requireLayers(session, "sessionDynamic");
   if (!sessions_[session].ended) {
     throw InputError("sessionDynamic: session " + std::to_string(session) +
                      " has not ended (its dynamic part is computed by endSession)");

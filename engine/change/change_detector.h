@@ -77,15 +77,24 @@ class ChangeDetector {
   /// The fusion into the device map (touched-block tracking for incremental consumers);
   /// nullptr in reference mode.
   DeviceFusion* deviceFusion();
-  /// TSDF layer of `session` in deviceMap() (S is layer 0).
-  static int sessionLayer(int session) { return session + 1; }
+  /// TSDF layer of `session` (begun, not released) in deviceMap() (S is layer 0); -1 in
+  /// reference mode.
+  int sessionLayer(int session) const;
+  /// Frees the layers of an ended session (a TSDF and a label layer, one block pool each); the
+  /// next session reuses them, so a mapper that runs session after session keeps its memory
+  /// bounded. Its sessionMap and sessionDynamic are gone then (InputError). Throws InputError
+  /// when the session has not ended or was released already.
+  void releaseSession(int session);
 
  private:
   struct Session {
     bool ended = false;
+    bool released = false;
     int part_version = -1;  // ended_ when its dynamic part was computed
   };
   void requireSession(int session, const char* what) const;
+  /// requireSession, and its layers not released.
+  void requireLayers(int session, const char* what) const;
   void requireSameGrid(const TsdfMap& session_map, const char* what) const;
 
   MapConfig map_config_;

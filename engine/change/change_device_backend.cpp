@@ -1,8 +1,11 @@
-// ChangeDetector on the device: S is TSDF layer 0 (what raycasts and the ESDF read by default),
-// session i is TSDF layer i + 1; label layers: D = 0, the passes' raw labels 1, P_i = 2 + i.
+// ChangeDetector on the device: S is TSDF layer 0 (what raycasts and the ESDF read by default);
+// label layers: D = 0, the passes' raw labels 1. Each session has a TSDF and a label layer (P_i)
+// of its own: appended, or those of a released session, cleared.
 #include "change/internal/change_backend.h"
 #include "change/change_detector.h"
 #include "change/change_device.h"
+
+#include <vector>
 
 namespace strata::change {
 namespace {
@@ -10,9 +13,6 @@ namespace {
 constexpr int kStaticLayer = 0;
 constexpr int kLabelLayer = 0;
 constexpr int kRawScratch = 1;
-
-int sessionTsdfLayer(int session) { return ChangeDetector::sessionLayer(session); }
-int sessionLabelLayer(int session) { return session + 2; }
 
 class DeviceBackend final : public ChangeBackend {
  public:
@@ -22,10 +22,24 @@ class DeviceBackend final : public ChangeBackend {
   }
 
   void addSession(int) override {
-    // Layers are only ever appended, one TSDF and one label layer per session, in order.
-    fusion_.map().addTsdfLayer();
-    fusion_.map().addLabelLayer();
+    SessionLayers layers;
+    if (released_.empty()) {
+      layers = {fusion_.map().addTsdfLayer(), fusion_.map().addLabelLayer()};
+    } else {
+      layers = released_.back();
+      released_.pop_back();
+      fusion_.map().clearTsdfLayer(layers.tsdf);
+      fusion_.map().clearLabelLayer(layers.labels);
+    }
+    session_layers_.push_back(layers);
   }
+
+  void releaseSession(int session) override {
+    released_.push_back(session_layers_[session]);
+    session_layers_[session] = SessionLayers{};
+  }
+
+  int sessionTsdfLayer(int session) const override { return session_layers_[session].tsdf; }
 
   FrameStats integrate(int session, const RgbdFrame& frame,
                        const CameraIntrinsics& intrinsics) override {
@@ -43,20 +57,26 @@ class DeviceBackend final : public ChangeBackend {
   TsdfMap sessionMap(int session) override { return download(sessionTsdfLayer(session)); }
   LabelMap labels() override { return downloadLabels(fusion_.map(), kLabelLayer); }
   LabelMap sessionDynamic(int session) override {
-    return downloadLabels(fusion_.map(), sessionLabelLayer(session));
+    return downloadLabels(fusion_.map(), session_layers_[session].labels);
   }
   DeviceTsdfMap* deviceMap() override { return &fusion_.map(); }
   DeviceFusion* deviceFusion() override { return &fusion_; }
 
  private:
+  struct SessionLayers {
+    int tsdf = -1;
+    int labels = -1;  // the session's dynamic part P_i
+  };
+
   /// Session `session` merged into S, and its dynamic part.
-  static ChangeLayers layers(int session) {
+  ChangeLayers layers(int session) const {
+    const SessionLayers& own = session_layers_[session];
     ChangeLayers layers;
     layers.static_tsdf = kStaticLayer;
-    layers.session_tsdf = sessionTsdfLayer(session);
+    layers.session_tsdf = own.tsdf;
     layers.labels = kLabelLayer;
     layers.raw_scratch = kRawScratch;
-    layers.session_parts = {{sessionTsdfLayer(session), sessionLabelLayer(session)}};
+    layers.session_parts = {{own.tsdf, own.labels}};
     return layers;
   }
 
@@ -68,6 +88,8 @@ class DeviceBackend final : public ChangeBackend {
 
   DeviceFusion fusion_;
   DeviceChange change_;
+  std::vector<SessionLayers> session_layers_;  // by session; released ones -1
+  std::vector<SessionLayers> released_;        // free for the next session
 };
 
 }  // namespace

@@ -39,6 +39,11 @@ class ReferenceBackend final : public ChangeBackend {
     return stats;
   }
 
+  void releaseSession(int session) override {
+    sessions_[session] = TsdfMap(map_config_);
+    parts_[session] = LabelMap{};
+  }
+
   void setSessionMap(int session, const TsdfMap& map) override { sessions_[session] = map; }
 
   ChangeUpdateStats update(int session) override {

@@ -15,19 +15,29 @@ constexpr std::uint64_t kLabelBlockBytes = kVoxelsPerBlock * DeviceTsdfMap::kLab
 
 }  // namespace
 
-vk::Buffer DeviceTsdfMap::makeLayer(std::uint64_t blocks, std::uint64_t block_bytes,
-                                    const std::string& name, bool zero) {
-  vk::Buffer layer =
-      vk::Buffer::create(context_, blocks * block_bytes, vk::MemoryUsage::kDeviceLocal, name);
-  if (!zero) return layer;
-  vk::CommandBuffer cmd = vk::CommandBuffer::create(context_);
+namespace {
+
+void fillZero(vk::Context& context, vk::Buffer& layer) {
+  vk::CommandBuffer cmd = vk::CommandBuffer::create(context);
   cmd.begin();
   cmd.fill(layer, 0u);  // unobserved / label 0
   cmd.barrier();
   cmd.end();
   cmd.submitAndWait();
+}
+
+}  // namespace
+
+vk::Buffer DeviceTsdfMap::makeLayer(std::uint64_t blocks, std::uint64_t block_bytes,
+                                    const std::string& name, bool zero) {
+  vk::Buffer layer =
+      vk::Buffer::create(context_, blocks * block_bytes, vk::MemoryUsage::kDeviceLocal, name);
+  if (zero) fillZero(context_, layer);
   return layer;
 }
+
+void DeviceTsdfMap::clearTsdfLayer(int layer) { fillZero(context_, tsdfLayer(layer)); }
+void DeviceTsdfMap::clearLabelLayer(int layer) { fillZero(context_, labelLayer(layer)); }
 
 std::vector<std::pair<BlockIndex, std::uint32_t>> DeviceTsdfMap::blockSlots() {
   std::vector<std::pair<BlockIndex, std::uint32_t>> out;

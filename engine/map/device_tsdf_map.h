@@ -49,6 +49,10 @@ class DeviceTsdfMap {
   /// Adds a label layer, every voxel 0; returns its index. Slot s holds uint32[512] at s * 2048.
   int addLabelLayer();
   vk::Buffer& labelPool(int layer) { return labelLayer(layer); }
+  /// Every voxel of one TSDF layer unobserved / of one label layer 0 again, as when added (for
+  /// reusing a layer instead of adding one). InputError for a layer the map lacks.
+  void clearTsdfLayer(int layer);
+  void clearLabelLayer(int layer);
   std::uint64_t labelPoolAddress(int layer) const { return labelLayer(layer).deviceAddress(); }
   /// Every allocated block with its slot (downloads the hash table).
   std::vector<std::pair<BlockIndex, std::uint32_t>> blockSlots();

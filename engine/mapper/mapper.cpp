@@ -63,7 +63,7 @@ DeviceTsdfMap& Mapper::deviceMap() { return *impl_->map; }
 
 int Mapper::liveLayer() const {
   if (!impl_->detector || !session_open_) return 0;
-  return change::ChangeDetector::sessionLayer(sessions_ - 1);
+  return impl_->detector->sessionLayer(sessions_ - 1);
 }
 
 std::uint32_t Mapper::blockCount() const { return impl_->map->blockCount(); }
@@ -94,6 +94,7 @@ SessionResult Mapper::endSession() {
     if (config_.discover_objects) {
       result.objects = change::sessionObjects(*impl_->detector, result.session, config_.objects);
     }
+    if (config_.release_ended_sessions) impl_->detector->releaseSession(result.session);
   }
   return result;
 }

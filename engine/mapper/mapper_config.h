@@ -35,6 +35,11 @@ struct MapperConfig {
   /// SessionResult::objects stays empty, for programs that discover them later against the
   /// final static estimate (strata diff).
   bool discover_objects = true;
+  /// endSession() frees the ended session's layers (change/change_detector.h releaseSession)
+  /// after its objects are found: the next session reuses them, so a mapper that runs for days
+  /// keeps its device memory bounded. Off: every session keeps a TSDF and a label layer for
+  /// later questions about it (strata diff asks against the final static estimate).
+  bool release_ended_sessions = false;
 
   /// scoreKeyframe(): raycast-reprojection metrics of a frame against the map before it.
   bool keyframe_scoring = false;

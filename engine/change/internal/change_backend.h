@@ -15,8 +15,13 @@ namespace strata::change {
 class ChangeBackend {
  public:
   virtual ~ChangeBackend() = default;
-  /// Adds the layers of session number `session` (= the number of sessions so far).
+  /// Adds the layers of session number `session` (= the number of sessions so far), reusing
+  /// released ones (cleared) where there are.
   virtual void addSession(int session) = 0;
+  /// Frees the layers of an ended session for a later addSession.
+  virtual void releaseSession(int session) = 0;
+  /// TSDF layer of `session` in deviceMap(); -1 without a device map.
+  virtual int sessionTsdfLayer(int /*session*/) const { return -1; }
   virtual FrameStats integrate(int session, const RgbdFrame& frame,
                                const CameraIntrinsics& intrinsics) = 0;
   virtual void setSessionMap(int session, const TsdfMap& map) = 0;
