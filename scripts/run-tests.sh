@@ -10,3 +10,9 @@ ctest --output-on-failure -j 2 --timeout 900
 # The path of a discrete GPU (device-local memory never mapped, every copy staged), tested here on
 # lavapipe on every change.
 STRATA_DEVICE_MEMORY=staged ctest --output-on-failure -j 2 --timeout 900 -L device
+# Sanitizers: everything rebuilt with clang, ASan + UBSan (build-san/), the unit and device tests
+# again under them (validation layer on; any report fails). Then every parser of outside data
+# fuzzed from its committed corpus for a bounded time (STRATA_FUZZ_SECONDS per target, 60 by
+# default). The acceptance runs are left to the build above. docs/reliability.md.
+"$ROOT/scripts/sanitize.sh"
+"$ROOT/scripts/fuzz.sh" "${STRATA_FUZZ_SECONDS:-60}"
