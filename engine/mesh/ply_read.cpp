@@ -2,15 +2,12 @@
 // cursor; unknown elements and properties are read and dropped.
 #include <algorithm>
 #include <array>
-#include <cerrno>
 #include <cmath>
-#include <cstring>
-#include <fstream>
-#include <iterator>
 #include <string>
 #include <vector>
 
 #include "core/error.h"
+#include "mesh/mesh_file_limits.h"
 #include "mesh/ply.h"
 #include "mesh/ply_format.h"
 
@@ -24,14 +21,6 @@ constexpr const char* kVertexRoles[] = {"x", "y", "z", "nx", "ny", "nz", "red", 
 constexpr int kRoleCount = 9;
 // Polygons with more corners are surely corruption; the limit also bounds the work per face.
 constexpr double kMaxPolygonCorners = 1024;
-
-std::string readWholeFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError("cannot open PLY '" + path + "': " + std::strerror(errno));
-  std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw InputError("cannot read PLY '" + path + "': " + std::strerror(errno));
-  return data;
-}
 
 std::size_t minItemBytes(const PlyElement& element, bool binary) {
   if (!binary) return 2 * element.properties.size();  // one character and a separator per value
@@ -113,6 +102,7 @@ void readFaces(Cursor& cursor, const PlyElement& element, Mesh& mesh) {
       for (std::size_t k = 1; k + 1 < corners.size(); ++k) {  // fan-triangulate polygons
         mesh.triangles.emplace_back(corners[0], corners[k], corners[k + 1]);
       }
+      checkMeshCount(mesh.triangles.size(), kMaxMeshTriangles, "kMaxMeshTriangles", "triangle");
     }
   }
 }
@@ -127,8 +117,27 @@ void checkIndices(const Mesh& mesh) {
   }
 }
 
+/// The header's counts against the mesh limits, before anything is read or allocated.
+void checkDeclaredCounts(const detail::PlyHeader& header) {
+  std::size_t vertices = 0;
+  std::size_t faces = 0;
+  for (const PlyElement& element : header.elements) {
+    // NOTE: each count is checked alone first, so the sums below cannot overflow.
+    if (element.name == "vertex") {
+      checkMeshCount(element.count, kMaxMeshVertices, "kMaxMeshVertices", "vertex");
+      vertices += element.count;
+    } else if (element.name == "face") {
+      checkMeshCount(element.count, kMaxMeshTriangles, "kMaxMeshTriangles", "face");
+      faces += element.count;
+    }
+  }
+  checkMeshCount(vertices, kMaxMeshVertices, "kMaxMeshVertices", "vertex");
+  checkMeshCount(faces, kMaxMeshTriangles, "kMaxMeshTriangles", "face");
+}
+
 template <typename Cursor>
 Mesh readBody(Cursor cursor, const detail::PlyHeader& header) {
+  checkDeclaredCounts(header);
   Mesh mesh;
   for (const PlyElement& element : header.elements) {
     if (!cursor.canHold(element.count, minItemBytes(element, header.binary))) {
@@ -152,7 +161,10 @@ Mesh readBody(Cursor cursor, const detail::PlyHeader& header) {
 }  // namespace
 
 Mesh readPly(const std::string& path) {
-  const std::string data = readWholeFile(path);
+  return parsePly(readTextBounded(path, kMaxMeshFileBytes, "PLY file"), path);
+}
+
+Mesh parsePly(const std::string& data, const std::string& path) {
   try {
     const detail::PlyHeader header = detail::parsePlyHeader(data);
     if (header.binary) return readBody(detail::PlyBinaryCursor(data, header.data_offset), header);
