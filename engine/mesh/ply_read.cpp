@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -46,6 +47,18 @@ void skipProperty(Cursor& cursor, const PlyProperty& property) {
   for (std::size_t i = 0; i < n; ++i) cursor.read(property.type);
 }
 
+/// Positions and colours must be finite floats: a NaN colour would be converted to uchar (undefined
+/// behaviour) and a NaN or infinite position poisons every bound computed from the mesh. Normals
+/// (roles 3..5) may be NaN, as a degenerate gradient leaves them.
+void checkFinite(const std::array<double, kRoleCount>& value, int roles, std::size_t vertex) {
+  for (int r = 0; r < roles; ++r) {
+    if ((r < 3 || r >= 6) && !(std::abs(value[r]) <= std::numeric_limits<float>::max())) {
+      throw InputError("vertex " + std::to_string(vertex) + " has a non-finite " +
+                       kVertexRoles[r] + " (" + std::to_string(value[r]) + ")");
+    }
+  }
+}
+
 template <typename Cursor>
 void readVertices(Cursor& cursor, const PlyElement& element, Mesh& mesh) {
   std::vector<int> role(element.properties.size(), -1);
@@ -70,6 +83,7 @@ void readVertices(Cursor& cursor, const PlyElement& element, Mesh& mesh) {
         value[role[p]] = cursor.read(element.properties[p].type);
       }
     }
+    checkFinite(value, colors ? kRoleCount : 3, i);
     mesh.vertices.push_back(Eigen::Vector3d(value[0], value[1], value[2]).cast<float>());
     if (normals)
       mesh.normals.push_back(Eigen::Vector3d(value[3], value[4], value[5]).cast<float>());
