@@ -131,11 +131,17 @@ void checkIndices(const Mesh& mesh) {
   }
 }
 
-/// The header's counts against the mesh limits, before anything is read or allocated.
+/// The header's counts against the mesh limits, before anything is read or allocated. An element
+/// without properties takes no bytes, so the file size cannot bound its count: refused, or a
+/// corrupt count would loop billions of times over nothing.
 void checkDeclaredCounts(const detail::PlyHeader& header) {
   std::size_t vertices = 0;
   std::size_t faces = 0;
   for (const PlyElement& element : header.elements) {
+    if (element.properties.empty() && element.count > 0) {
+      throw InputError("element '" + element.name + "' declares " +
+                       std::to_string(element.count) + " items but no properties");
+    }
     // NOTE: each count is checked alone first, so the sums below cannot overflow.
     if (element.name == "vertex") {
       checkMeshCount(element.count, kMaxMeshVertices, "kMaxMeshVertices", "vertex");
