@@ -5,11 +5,15 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/file_limits.h"
 
 namespace strata {
 namespace {
 
 constexpr char kMagic[8] = {'S', 'T', 'R', 'A', 'T', 'A', 'M', 'P'};
+// Checked before the file is read into memory: 8 GiB holds ~1.4 million 6 KiB blocks, far beyond
+// any map a session builds, and still fits the memory of the machines that would load it.
+constexpr FileSizeLimit kMaxMapFileBytes{"kMaxMapFileBytes", std::uint64_t{8} << 30};
 
 class ByteWriter {
  public:
@@ -181,6 +185,8 @@ void saveMap(const TsdfMap& map, const std::string& path) {
   writeFileAtomically(path, serializeMap(map));
 }
 
-TsdfMap loadMap(const std::string& path) { return deserializeMap(readFile(path), path); }
+TsdfMap loadMap(const std::string& path) {
+  return deserializeMap(readFileBounded(path, kMaxMapFileBytes, "map file"), path);
+}
 
 }  // namespace strata

@@ -15,7 +15,10 @@ void writePly(const std::string& path, const Mesh& mesh);
 /// Reads binary little-endian or ascii PLY with a `vertex` element (x y z, optional nx ny nz and
 /// red green blue, any scalar types; other properties are skipped) and an optional `face` element
 /// (polygons are fan-triangulated). Throws InputError naming the path on missing, truncated or
-/// corrupt files (bad header, indices out of range, unsupported format).
+/// corrupt files (bad header, indices out of range, unsupported format) and files over the limits of
+/// mesh/mesh_file_limits.h (file bytes, vertex and triangle counts).
 Mesh readPly(const std::string& path);
+/// The same from the file's bytes; `name` (a path) prefixes error messages.
+Mesh parsePly(const std::string& data, const std::string& name);
 
 }  // namespace strata

@@ -2,15 +2,13 @@
 // cursor; unknown elements and properties are read and dropped.
 #include <algorithm>
 #include <array>
-#include <cerrno>
 #include <cmath>
-#include <cstring>
-#include <fstream>
-#include <iterator>
+#include <limits>
 #include <string>
 #include <vector>
 
 #include "core/error.h"
+#include "mesh/mesh_file_limits.h"
 #include "mesh/ply.h"
 #include "mesh/ply_format.h"
 
@@ -24,14 +22,6 @@ constexpr const char* kVertexRoles[] = {"x", "y", "z", "nx", "ny", "nz", "red", 
 constexpr int kRoleCount = 9;
 // Polygons with more corners are surely corruption; the limit also bounds the work per face.
 constexpr double kMaxPolygonCorners = 1024;
-
-std::string readWholeFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError("cannot open PLY '" + path + "': " + std::strerror(errno));
-  std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw InputError("cannot read PLY '" + path + "': " + std::strerror(errno));
-  return data;
-}
 
 std::size_t minItemBytes(const PlyElement& element, bool binary) {
   if (!binary) return 2 * element.properties.size();  // one character and a separator per value
@@ -55,6 +45,18 @@ template <typename Cursor>
 void skipProperty(Cursor& cursor, const PlyProperty& property) {
   const std::size_t n = property.is_list ? readListCount(cursor, property) : 1;
   for (std::size_t i = 0; i < n; ++i) cursor.read(property.type);
+}
+
+/// Positions and colours must be finite floats: a NaN colour would be converted to uchar (undefined
+/// behaviour) and a NaN or infinite position poisons every bound computed from the mesh. Normals
+/// (roles 3..5) may be NaN, as a degenerate gradient leaves them.
+void checkFinite(const std::array<double, kRoleCount>& value, int roles, std::size_t vertex) {
+  for (int r = 0; r < roles; ++r) {
+    if ((r < 3 || r >= 6) && !(std::abs(value[r]) <= std::numeric_limits<float>::max())) {
+      throw InputError("vertex " + std::to_string(vertex) + " has a non-finite " +
+                       kVertexRoles[r] + " (" + std::to_string(value[r]) + ")");
+    }
+  }
 }
 
 template <typename Cursor>
@@ -81,6 +83,7 @@ void readVertices(Cursor& cursor, const PlyElement& element, Mesh& mesh) {
         value[role[p]] = cursor.read(element.properties[p].type);
       }
     }
+    checkFinite(value, colors ? kRoleCount : 3, i);
     mesh.vertices.push_back(Eigen::Vector3d(value[0], value[1], value[2]).cast<float>());
     if (normals)
       mesh.normals.push_back(Eigen::Vector3d(value[3], value[4], value[5]).cast<float>());
@@ -113,6 +116,7 @@ void readFaces(Cursor& cursor, const PlyElement& element, Mesh& mesh) {
       for (std::size_t k = 1; k + 1 < corners.size(); ++k) {  // fan-triangulate polygons
         mesh.triangles.emplace_back(corners[0], corners[k], corners[k + 1]);
       }
+      checkMeshCount(mesh.triangles.size(), kMaxMeshTriangles, "kMaxMeshTriangles", "triangle");
     }
   }
 }
@@ -127,8 +131,33 @@ void checkIndices(const Mesh& mesh) {
   }
 }
 
+/// The header's counts against the mesh limits, before anything is read or allocated. An element
+/// without properties takes no bytes, so the file size cannot bound its count: refused, or a
+/// corrupt count would loop billions of times over nothing.
+void checkDeclaredCounts(const detail::PlyHeader& header) {
+  std::size_t vertices = 0;
+  std::size_t faces = 0;
+  for (const PlyElement& element : header.elements) {
+    if (element.properties.empty() && element.count > 0) {
+      throw InputError("element '" + element.name + "' declares " +
+                       std::to_string(element.count) + " items but no properties");
+    }
+    // NOTE: each count is checked alone first, so the sums below cannot overflow.
+    if (element.name == "vertex") {
+      checkMeshCount(element.count, kMaxMeshVertices, "kMaxMeshVertices", "vertex");
+      vertices += element.count;
+    } else if (element.name == "face") {
+      checkMeshCount(element.count, kMaxMeshTriangles, "kMaxMeshTriangles", "face");
+      faces += element.count;
+    }
+  }
+  checkMeshCount(vertices, kMaxMeshVertices, "kMaxMeshVertices", "vertex");
+  checkMeshCount(faces, kMaxMeshTriangles, "kMaxMeshTriangles", "face");
+}
+
 template <typename Cursor>
 Mesh readBody(Cursor cursor, const detail::PlyHeader& header) {
+  checkDeclaredCounts(header);
   Mesh mesh;
   for (const PlyElement& element : header.elements) {
     if (!cursor.canHold(element.count, minItemBytes(element, header.binary))) {
@@ -152,7 +181,10 @@ Mesh readBody(Cursor cursor, const detail::PlyHeader& header) {
 }  // namespace
 
 Mesh readPly(const std::string& path) {
-  const std::string data = readWholeFile(path);
+  return parsePly(readTextBounded(path, kMaxMeshFileBytes, "PLY file"), path);
+}
+
+Mesh parsePly(const std::string& data, const std::string& path) {
   try {
     const detail::PlyHeader header = detail::parsePlyHeader(data);
     if (header.binary) return readBody(detail::PlyBinaryCursor(data, header.data_offset), header);

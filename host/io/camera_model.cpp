@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/file_limits.h"
 
 namespace strata {
 namespace {
@@ -48,10 +49,12 @@ std::vector<std::uint16_t> readInvalidList(const YAML::Node& node, const std::st
   return values;
 }
 
-YAML::Node loadYaml(const std::string& path) {
-  if (!std::filesystem::is_regular_file(path)) throw InputError(path + ": camera file not found");
+// Checked before a camera file is read: a camera.yaml or a 3x3 K takes well under a kilobyte.
+constexpr FileSizeLimit kMaxCameraFileBytes{"kMaxCameraFileBytes", std::uint64_t{1} << 20};
+
+YAML::Node parseYaml(const std::string& text, const std::string& path) {
   try {
-    YAML::Node root = YAML::LoadFile(path);
+    YAML::Node root = YAML::Load(text);
     if (!root.IsMap()) throw InputError(path + ": camera file is not a YAML map of keys");
     return root;
   } catch (const YAML::Exception& e) {
@@ -80,7 +83,11 @@ void CameraModel::validate() const {
 }
 
 void applyCameraYaml(const std::string& path, CameraModel* model) {
-  const YAML::Node root = loadYaml(path);
+  applyCameraYamlText(readTextBounded(path, kMaxCameraFileBytes, "camera file"), path, model);
+}
+
+void applyCameraYamlText(const std::string& text, const std::string& path, CameraModel* model) {
+  const YAML::Node root = parseYaml(text, path);
   CameraIntrinsics& k = model->intrinsics;
   applyKey(root, "width", path, &k.width_px);
   applyKey(root, "height", path, &k.height_px);
@@ -98,8 +105,13 @@ void applyCameraYaml(const std::string& path, CameraModel* model) {
 }
 
 void applyIntrinsicsMatrixFile(const std::string& path, CameraModel* model) {
+  checkFileSize(path, kMaxCameraFileBytes, "intrinsics file");
   std::ifstream in(path);
   if (!in) throw InputError(path + ": cannot open intrinsics file");
+  applyIntrinsicsMatrix(in, path, model);
+}
+
+void applyIntrinsicsMatrix(std::istream& in, const std::string& path, CameraModel* model) {
   double k[9];
   for (double& value : k) {
     if (!(in >> value) || !std::isfinite(value)) {

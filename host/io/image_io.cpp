@@ -1,13 +1,14 @@
 #include "io/image_io.h"
 
 #include <cmath>
-#include <filesystem>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/file_limits.h"
+#include "io/image_header.h"
 
 namespace strata {
 namespace {
@@ -23,16 +24,22 @@ std::string describeType(const cv::Mat& image) {
   return out.str();
 }
 
-cv::Mat readImage(const std::string& path, int flags, const char* what) {
-  if (!std::filesystem::is_regular_file(path)) throw InputError(path + ": " + what + " not found");
+// Checked before an image file is read: an 8192 x 8192 16-bit PNG stored uncompressed is 128 MiB.
+constexpr FileSizeLimit kMaxImageFileBytes{"kMaxImageFileBytes", std::uint64_t{256} << 20};
+
+/// Decodes PNG or JPEG bytes after their header passed the size limits.
+cv::Mat decodeImage(const std::vector<std::uint8_t>& bytes, const std::string& name, int flags,
+                    const char* what) {
+  const detail::ImageHeader header = detail::readImageHeader(bytes, name + ": " + what);
+  detail::checkImageHeader(header, bytes.size(), name + ": " + what);
   cv::Mat image;
   try {
-    image = cv::imread(path, flags);
+    image = cv::imdecode(bytes, flags);
   } catch (const cv::Exception& e) {
-    throw InputError(path + ": cannot decode " + what + ": " + e.what());
+    throw InputError(name + ": cannot decode " + what + ": " + e.what());
   }
   if (image.empty())
-    throw InputError(path + ": cannot decode " + what + " (corrupt or not an image)");
+    throw InputError(name + ": cannot decode " + what + " (corrupt or not an image)");
   return image;
 }
 
@@ -62,9 +69,14 @@ DepthDecoder::DepthDecoder(double depth_scale, const std::vector<std::uint16_t>&
 }
 
 DepthImage readDepthPng(const std::string& path, const DepthDecoder& decoder) {
+  return decodeDepthPng(readFileBounded(path, kMaxImageFileBytes, "depth image"), path, decoder);
+}
+
+DepthImage decodeDepthPng(const std::vector<std::uint8_t>& bytes, const std::string& path,
+                          const DepthDecoder& decoder) {
   // NOTE: IMREAD_UNCHANGED (keeps bit depth like IMREAD_ANYDEPTH, and also the channel count) so a
   // 3-channel 16-bit file is reported instead of silently converted to grey.
-  const cv::Mat raw = readImage(path, cv::IMREAD_UNCHANGED, "depth image");
+  const cv::Mat raw = decodeImage(bytes, path, cv::IMREAD_UNCHANGED, "depth image");
   if (raw.type() != CV_16UC1) {
     throw InputError(path + ": depth image must be 16-bit single-channel, found " +
                      describeType(raw));
@@ -78,7 +90,11 @@ DepthImage readDepthPng(const std::string& path, const DepthDecoder& decoder) {
 }
 
 ColorImage readColorImage(const std::string& path) {
-  const cv::Mat bgr = readImage(path, cv::IMREAD_COLOR, "colour image");
+  return decodeColorImage(readFileBounded(path, kMaxImageFileBytes, "colour image"), path);
+}
+
+ColorImage decodeColorImage(const std::vector<std::uint8_t>& bytes, const std::string& path) {
+  const cv::Mat bgr = decodeImage(bytes, path, cv::IMREAD_COLOR, "colour image");
   ColorImage color(bgr.cols, bgr.rows);
   for (int v = 0; v < bgr.rows; ++v) {
     const cv::Vec3b* row = bgr.ptr<cv::Vec3b>(v);

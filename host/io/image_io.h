@@ -23,11 +23,18 @@ class DepthDecoder {
 };
 
 /// Reads a 16-bit single-channel depth PNG. Throws InputError naming the file when it is missing,
-/// unreadable or of another type (e.g. 8-bit or 3-channel).
+/// unreadable, of another type (e.g. 8-bit or 3-channel), over kMaxImageFileBytes (256 MiB), or its
+/// header claims a size over core/image_limits.h (refused before decoding).
 DepthImage readDepthPng(const std::string& path, const DepthDecoder& decoder);
+/// The same from the file's bytes; `name` (a path) prefixes error messages.
+DepthImage decodeDepthPng(const std::vector<std::uint8_t>& bytes, const std::string& name,
+                          const DepthDecoder& decoder);
 
-/// Reads a colour image (any format OpenCV reads) as RGB. Throws InputError naming the file.
+/// Reads a PNG or JPEG colour image as RGB (other formats are refused: their sizes are not checked
+/// before decoding). Throws InputError naming the file, with the same limits as readDepthPng.
 ColorImage readColorImage(const std::string& path);
+/// The same from the file's bytes; `name` (a path) prefixes error messages.
+ColorImage decodeColorImage(const std::vector<std::uint8_t>& bytes, const std::string& name);
 
 /// Writes depth as a 16-bit PNG: round(depth_m * depth_scale); 0 and non-finite stay 0. Throws
 /// InputError when a depth does not fit 16 bits at that scale, Error when the file cannot be

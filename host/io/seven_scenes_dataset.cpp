@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "core/error.h"
+#include "core/file_limits.h"
 #include "io/camera_model.h"
 #include "io/image_io.h"
 
@@ -18,6 +19,8 @@ namespace fs = std::filesystem;
 
 constexpr const char* kDepthSuffix = ".depth.png";
 constexpr double kFrameRate_hz = 30.0;
+// Checked before a pose file is read: 16 numbers take a few hundred bytes; 64 KiB allows comments.
+constexpr FileSizeLimit kMaxPoseFileBytes{"kMaxPoseFileBytes", std::uint64_t{64} << 10};
 
 bool endsWith(const std::string& text, const std::string& suffix) {
   return text.size() >= suffix.size() &&
@@ -104,8 +107,13 @@ bool looksLike7Scenes(const std::string& folder) {
 }
 
 Eigen::Isometry3d readPoseMatrixFile(const std::string& path) {
+  checkFileSize(path, kMaxPoseFileBytes, "pose file");
   std::ifstream in(path);
   if (!in) throw InputError(path + ": pose file not found or not readable");
+  return readPoseMatrix(in, path);
+}
+
+Eigen::Isometry3d readPoseMatrix(std::istream& in, const std::string& path) {
   Eigen::Matrix4d m;
   for (int i = 0; i < 16; ++i) {
     std::string token;

@@ -1,5 +1,6 @@
 #pragma once
 // Microsoft 7-Scenes folder reader: frame-NNNNNN.{depth.png,pose.txt,color.jpg}.
+#include <istream>
 #include <memory>
 #include <string>
 
@@ -19,8 +20,11 @@ std::unique_ptr<Dataset> open7ScenesDataset(const std::string& folder,
 bool looksLike7Scenes(const std::string& folder);
 
 /// Reads a 4x4 row-major matrix text file as a pose. Throws InputError naming the file when it is
-/// missing, has fewer than 16 numbers or a non-finite one, or its last row is not 0 0 0 1. The
-/// rotation is replaced by the nearest rotation matrix (7-Scenes ones are orthonormal to ~2e-4).
+/// missing, over kMaxPoseFileBytes (64 KiB), has fewer than 16 numbers or a non-finite one, or its
+/// last row is not 0 0 0 1. The rotation is replaced by the nearest rotation matrix (7-Scenes ones
+/// are orthonormal to ~2e-4).
 Eigen::Isometry3d readPoseMatrixFile(const std::string& path);
+/// The same from a stream; `name` (a path) prefixes error messages.
+Eigen::Isometry3d readPoseMatrix(std::istream& in, const std::string& name);
 
 }  // namespace strata

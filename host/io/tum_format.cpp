@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/file_limits.h"
 
 namespace strata::tum {
 namespace {
@@ -17,10 +18,18 @@ struct Line {
   std::vector<std::string> tokens;
 };
 
-/// Non-comment, non-blank lines of a text file, split on whitespace.
-std::vector<Line> readLines(const std::string& path) {
+// Checked before a list or trajectory is read: a TUM groundtruth.txt of an hour at 100 Hz is ~30 MB.
+constexpr FileSizeLimit kMaxTumTextFileBytes{"kMaxTumTextFileBytes", std::uint64_t{256} << 20};
+
+std::ifstream openBounded(const std::string& path) {
+  checkFileSize(path, kMaxTumTextFileBytes, "TUM text file");
   std::ifstream in(path);
   if (!in) throw InputError(path + ": file not found or not readable");
+  return in;
+}
+
+/// Non-comment, non-blank lines of a text stream, split on whitespace.
+std::vector<Line> readLines(std::istream& in) {
   std::vector<Line> lines;
   std::string text;
   for (int number = 1; std::getline(in, text); ++number) {
@@ -50,8 +59,13 @@ double parseNumber(const std::string& token, const std::string& context) {
 }  // namespace
 
 std::vector<TimedFile> readFileList(const std::string& path) {
+  std::ifstream in = openBounded(path);
+  return readFileList(in, path);
+}
+
+std::vector<TimedFile> readFileList(std::istream& in, const std::string& path) {
   std::vector<TimedFile> files;
-  for (const Line& line : readLines(path)) {
+  for (const Line& line : readLines(in)) {
     if (line.tokens.size() < 2) {
       throw InputError(where(path, line) + "expected 'timestamp filename', got " +
                        std::to_string(line.tokens.size()) + " field(s)");
@@ -65,8 +79,13 @@ std::vector<TimedFile> readFileList(const std::string& path) {
 }
 
 std::vector<TimedPose> readTrajectory(const std::string& path) {
+  std::ifstream in = openBounded(path);
+  return readTrajectory(in, path);
+}
+
+std::vector<TimedPose> readTrajectory(std::istream& in, const std::string& path) {
   std::vector<TimedPose> poses;
-  for (const Line& line : readLines(path)) {
+  for (const Line& line : readLines(in)) {
     if (line.tokens.size() != 8) {
       throw InputError(where(path, line) + "expected 'timestamp tx ty tz qx qy qz qw', got " +
                        std::to_string(line.tokens.size()) + " field(s)");

@@ -2,6 +2,7 @@
 // The TUM RGB-D text formats: file lists (rgb.txt, depth.txt) and trajectories (groundtruth.txt).
 // https://cvg.cit.tum.de/data/datasets/rgbd-dataset/file_formats
 #include <Eigen/Geometry>
+#include <istream>
 #include <optional>
 #include <string>
 #include <vector>
@@ -24,12 +25,18 @@ struct TimedPose {
 };
 
 /// Reads a file list, sorted by timestamp; '#' lines and blank lines skipped. Throws InputError
-/// naming the file and line for a missing file or a malformed line.
+/// naming the file and line for a missing file, a file over kMaxTumTextFileBytes (256 MiB) or a
+/// malformed line.
 std::vector<TimedFile> readFileList(const std::string& path);
+/// The same from a stream; `name` (a path) prefixes error messages.
+std::vector<TimedFile> readFileList(std::istream& in, const std::string& name);
 
 /// Reads a trajectory, sorted by timestamp. The quaternion is normalised. Throws InputError naming
-/// the file and line for a malformed line, a non-finite value or a zero quaternion.
+/// the file and line for a malformed line, a non-finite value or a zero quaternion, or a file over
+/// kMaxTumTextFileBytes.
 std::vector<TimedPose> readTrajectory(const std::string& path);
+/// The same from a stream; `name` (a path) prefixes error messages.
+std::vector<TimedPose> readTrajectory(std::istream& in, const std::string& name);
 
 /// Camera-to-world pose from tx ty tz qx qy qz qw (quaternion normalised; it must not be zero).
 /// Returns nullopt for a zero or non-finite quaternion.

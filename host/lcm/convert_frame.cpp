@@ -22,7 +22,13 @@ class WireReader {
     return static_cast<std::int32_t>((std::uint32_t{p[0]} << 24) | (std::uint32_t{p[1]} << 16) |
                                      (std::uint32_t{p[2]} << 8) | std::uint32_t{p[3]});
   }
-  void skipString() { skip(checkedLength(readInt32(), 1, "string")); }
+  /// NOTE: an LCM string's length counts its terminating NUL, so it is at least 1; lcm-gen's
+  /// decoders compute `length - 1` unchecked (signed overflow for INT32_MIN, a huge size for 0).
+  void skipString() {
+    const std::int32_t length = readInt32();
+    if (length < 1) fail("string length " + std::to_string(length) + " (at least 1: its NUL)");
+    skip(checkedLength(length, 1, "string"));
+  }
   /// A length field counting `element_bytes`-byte elements; fails when they do not follow.
   int checkedLength(std::int32_t count, int element_bytes, const char* what) {
     if (count < 0 || static_cast<std::int64_t>(count) * element_bytes > size_ - pos_) {
@@ -65,6 +71,12 @@ RgbdFrame decodeImages(const rgbd_frame_t& message) {
   return frame;
 }
 
+void skipPose(WireReader& in) {
+  in.skip(8);       // utime
+  in.skipString();  // parent_frame
+  in.skipString();  // child_frame
+}
+
 }  // namespace
 
 void checkRgbdFrameLengths(const std::uint8_t* data, int size) {
@@ -74,6 +86,20 @@ void checkRgbdFrameLengths(const std::uint8_t* data, int size) {
   in.skip(8);  // sequence
   skipImage(in);
   skipImage(in);
+  in.skip(1);  // has_pose
+  skipPose(in);
+}
+
+void checkPoseLengths(const std::uint8_t* data, int size) {
+  WireReader in(data, size, "pose_t");
+  in.skip(8);  // fingerprint
+  skipPose(in);
+}
+
+void checkCommandLengths(const std::uint8_t* data, int size) {
+  WireReader in(data, size, "command_t");
+  in.skip(8 + 8 + 8 + 1);  // fingerprint, utime, request_id, command
+  in.skipString();         // argument
 }
 
 void checkCameraInfoLengths(const std::uint8_t* data, int size) {

@@ -5,6 +5,8 @@
 #include <string>
 
 #include "core/types.h"
+#include "strata/command_t.hpp"
+#include "strata/pose_t.hpp"
 #include "strata/rgbd_frame_t.hpp"
 
 namespace strata::lcm_io {
@@ -33,16 +35,24 @@ rgbd_frame_t encodeFrame(const RgbdFrame& frame, std::int64_t utime, const std::
 /// depth and colour of different sizes, bad pose or pose frames).
 ReceivedFrame decodeFrame(const rgbd_frame_t& message);
 
-/// Decodes an LCM payload into `message`. Throws InputError when the type fingerprint is not
-/// Message's, the payload is truncated or has bytes left over, or a size field claims more data
-/// than the payload holds (checked first, so garbage cannot make the decoder allocate gigabytes).
+/// Largest LCM payload decoded, bytes: a 4K frame as depth32f + rgb8 is ~60 MB; checked before
+/// decoding so one message cannot make the decoder allocate more than this.
+inline constexpr int kMaxPayloadBytes = 256 << 20;
+
+/// Decodes an LCM payload into `message`. Throws InputError when the payload is over
+/// kMaxPayloadBytes, the type fingerprint is not Message's, the payload is truncated or has bytes
+/// left over, or a size field claims more data than the payload holds (checked first, so garbage
+/// cannot make the decoder allocate gigabytes).
 template <typename Message>
 void decodePayload(const void* data, int size, Message& message);
 
-/// Throws InputError when a length field of an rgbd_frame_t / camera_info_t payload claims more
-/// bytes than follow it (called by decodePayload for those types).
+/// Throws InputError when a length field of a payload claims more bytes than follow it, or a
+/// string length is below 1 (called by decodePayload for the types strata-mapper accepts, before
+/// lcm-gen's decoder trusts those fields).
 void checkRgbdFrameLengths(const std::uint8_t* data, int size);
 void checkCameraInfoLengths(const std::uint8_t* data, int size);
+void checkPoseLengths(const std::uint8_t* data, int size);
+void checkCommandLengths(const std::uint8_t* data, int size);
 
 }  // namespace strata::lcm_io
 

@@ -23,12 +23,7 @@ std::size_t checkedPixels(const image_t& image, const char* what) {
     throw InputError(std::string(what) + " image: unknown encoding '" + image.encoding +
                      "' (expected depth16, depth32f, rgb8, bgr8 or mono8)");
   }
-  if (image.width <= 0 || image.height <= 0 || image.width > kMaxImageSidePx ||
-      image.height > kMaxImageSidePx) {
-    throw InputError(std::string(what) + " image: size " + std::to_string(image.width) + "x" +
-                     std::to_string(image.height) + " outside 1.." +
-                     std::to_string(kMaxImageSidePx) + " pixels");
-  }
+  checkImageSize(image.width, image.height, std::string(what) + " image");
   const std::size_t pixels = static_cast<std::size_t>(image.width) * image.height;
   const std::size_t expected = pixels * static_cast<std::size_t>(bpp);
   if (image.size < 0 || static_cast<std::size_t>(image.size) != expected ||

@@ -1,9 +1,10 @@
 #pragma once
 // image_t <-> DepthImage / ColorImage. Decoding checks everything a sender can get wrong (unknown
-// encoding, size fields that disagree with the payload, negative or absurd sizes) and throws
+// encoding, size fields that disagree with the payload, sizes over core/image_limits.h) and throws
 // InputError naming it; nothing is read past the payload.
 #include <string>
 
+#include "core/image_limits.h"
 #include "core/types.h"
 #include "strata/image_t.hpp"
 
@@ -14,9 +15,6 @@ inline constexpr const char* kDepth32f = "depth32f";
 inline constexpr const char* kRgb8 = "rgb8";
 inline constexpr const char* kBgr8 = "bgr8";
 inline constexpr const char* kMono8 = "mono8";
-
-/// Largest image side accepted, pixels: guards allocations against garbage size fields.
-inline constexpr int kMaxImageSidePx = 16384;
 
 /// depth16 / depth32f -> metres (0 = no depth; NaN kept, fusion ignores it).
 DepthImage decodeDepth(const image_t& image);

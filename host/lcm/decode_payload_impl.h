@@ -6,6 +6,8 @@
 
 #include "core/error.h"
 #include "strata/camera_info_t.hpp"
+#include "strata/command_t.hpp"
+#include "strata/pose_t.hpp"
 #include "strata/rgbd_frame_t.hpp"
 
 namespace strata::lcm_io {
@@ -16,9 +18,15 @@ void decodePayload(const void* data, int size, Message& message) {
   if (data == nullptr || size < 8) {
     throw InputError(type + ": payload of " + std::to_string(size) + " bytes is too short");
   }
+  if (size > kMaxPayloadBytes) {
+    throw InputError(type + ": payload of " + std::to_string(size) + " bytes is over " +
+                     "kMaxPayloadBytes = " + std::to_string(kMaxPayloadBytes));
+  }
   const auto* bytes = static_cast<const std::uint8_t*>(data);
   if constexpr (std::is_same_v<Message, rgbd_frame_t>) checkRgbdFrameLengths(bytes, size);
   if constexpr (std::is_same_v<Message, camera_info_t>) checkCameraInfoLengths(bytes, size);
+  if constexpr (std::is_same_v<Message, pose_t>) checkPoseLengths(bytes, size);
+  if constexpr (std::is_same_v<Message, command_t>) checkCommandLengths(bytes, size);
   int used = -1;
   try {
     used = message.decode(data, 0, size);

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "mesh/mesh_file_limits.h"
 #include "mesh/ply.h"
 
 namespace strata::sim {
@@ -45,6 +46,8 @@ void parseFace(std::istringstream& in, Mesh& mesh, const std::string& where) {
     corners.push_back(static_cast<int>(index));
   }
   if (corners.size() < 3) throw InputError(where + ": a face needs at least 3 vertices");
+  checkMeshCount(mesh.triangles.size() + corners.size() - 2, kMaxMeshTriangles,
+                 "kMaxMeshTriangles", "triangle");
   for (std::size_t i = 1; i + 1 < corners.size(); ++i) {
     mesh.triangles.emplace_back(corners[0], corners[i], corners[i + 1]);
   }
@@ -53,8 +56,13 @@ void parseFace(std::istringstream& in, Mesh& mesh, const std::string& where) {
 }  // namespace
 
 Mesh readObj(const std::string& path) {
+  checkFileSize(path, kMaxMeshFileBytes, "OBJ file");
   std::ifstream file(path);
   if (!file) throw InputError("cannot open mesh file '" + path + "'");
+  return readObj(file, path);
+}
+
+Mesh readObj(std::istream& file, const std::string& path) {
   Mesh mesh;
   std::string line;
   for (int number = 1; std::getline(file, line); ++number) {
@@ -67,6 +75,7 @@ Mesh readObj(const std::string& path) {
       if (!(in >> v.x() >> v.y() >> v.z()) || !v.allFinite()) {
         throw InputError(where + ": expected 'v x y z' with 3 numbers");
       }
+      checkMeshCount(mesh.vertices.size() + 1, kMaxMeshVertices, "kMaxMeshVertices", "vertex");
       mesh.vertices.push_back(v);
     } else if (tag == "f") {
       parseFace(in, mesh, where);

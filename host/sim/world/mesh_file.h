@@ -1,6 +1,7 @@
 #pragma once
 // Triangle meshes from files for `type: mesh` objects: Wavefront OBJ (our small reader) and PLY
 // (engine/mesh/ply.h).
+#include <istream>
 #include <string>
 
 #include "mesh/mesh.h"
@@ -9,8 +10,11 @@
 namespace strata::sim {
 
 /// Reads `v x y z` and `f a b c ...` lines (a, a/t, a/t/n, a//n; negative = relative; polygons
-/// fan-triangulated); every other line is ignored. InputError "path:line: what" on bad lines.
+/// fan-triangulated); every other line is ignored. InputError "path:line: what" on bad lines, and
+/// on files, vertex or triangle counts over the limits of mesh/mesh_file_limits.h.
 Mesh readObj(const std::string& path);
+/// The same from a stream; `name` (a path) prefixes error messages.
+Mesh readObj(std::istream& in, const std::string& name);
 
 /// readObj for .obj, readPly otherwise.
 Mesh readMeshFile(const std::string& path);

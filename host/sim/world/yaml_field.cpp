@@ -83,7 +83,12 @@ std::optional<YamlField> YamlField::find(const std::string& key) const {
 void YamlField::allowKeys(const std::vector<std::string>& allowed) const {
   expectMap();
   for (const auto& entry : node_) {
-    const std::string key = entry.first.as<std::string>();
+    // NOTE: YAML allows any node as a key ({[4, 3]: 1}); ours are names, so refuse the rest here
+    // rather than let as<std::string>() throw a YAML exception past the parser.
+    if (!entry.first.IsScalar()) {
+      child(entry.first, path_).fail("a key must be text, got " + describe(entry.first));
+    }
+    const std::string key = entry.first.Scalar();
     if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
     std::string hint;
     std::size_t best = 3;  // suggest only close matches (typos)

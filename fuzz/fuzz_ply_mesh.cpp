@@ -1,0 +1,7 @@
+// libFuzzer target: PLY meshes (header and body), through the fuzz_ply_mesh entry of parser_entries.h.
+#include "parser_entries.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  static const strata::fuzz::Entry kEntry = strata::fuzz::findEntry("fuzz_ply_mesh");
+  return strata::fuzz::refuseOrAccept(kEntry, data, size);
+}

@@ -1,0 +1,7 @@
+// libFuzzer target: TUM rgb.txt / depth.txt, through the fuzz_tum_file_list entry of parser_entries.h.
+#include "parser_entries.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  static const strata::fuzz::Entry kEntry = strata::fuzz::findEntry("fuzz_tum_file_list");
+  return strata::fuzz::refuseOrAccept(kEntry, data, size);
+}

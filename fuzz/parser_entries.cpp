@@ -1,0 +1,149 @@
+#include "parser_entries.h"
+
+#include <cstring>
+#include <sstream>
+#include <utility>
+
+#include "core/atomic_file.h"
+#include "io/camera_model.h"
+#include "io/image_io.h"
+#include "io/seven_scenes_dataset.h"
+#include "io/tum_format.h"
+#include "lcm/convert_frame.h"
+#include "lcm/convert_pose.h"
+#include "map/map_file.h"
+#include "mesh/ply.h"
+#include "sim/world/mesh_file.h"
+#include "sim/world/world_parser.h"
+#include "strata/command_t.hpp"
+
+namespace strata::fuzz {
+namespace {
+
+std::string text(const std::uint8_t* data, std::size_t size) {
+  return std::string(reinterpret_cast<const char*>(data), size);
+}
+
+std::vector<std::uint8_t> bytes(const std::uint8_t* data, std::size_t size) {
+  return std::vector<std::uint8_t>(data, data + size);
+}
+
+/// NOTE: the trailing CRC-32 is recomputed, so inputs reach the config, layer and block parsing
+/// behind the checksum instead of nearly all stopping at it.
+void mapFile(const std::uint8_t* data, std::size_t size) {
+  std::vector<std::uint8_t> file = bytes(data, size);
+  if (file.size() >= 4) {
+    const std::uint32_t crc = crc32(file.data(), file.size() - 4);
+    std::memcpy(file.data() + file.size() - 4, &crc, 4);
+  }
+  deserializeMap(file, "fuzz.strata");
+}
+
+void tumFileList(const std::uint8_t* data, std::size_t size) {
+  std::istringstream in(text(data, size));
+  tum::readFileList(in, "depth.txt");
+}
+
+void tumTrajectory(const std::uint8_t* data, std::size_t size) {
+  std::istringstream in(text(data, size));
+  tum::readTrajectory(in, "groundtruth.txt");
+}
+
+void poseMatrix(const std::uint8_t* data, std::size_t size) {
+  std::istringstream in(text(data, size));
+  readPoseMatrix(in, "frame.pose.txt");
+}
+
+/// Applied then validated, as resolveCameraModel does, and turned into the depth decoder.
+void cameraYaml(const std::uint8_t* data, std::size_t size) {
+  CameraModel model;
+  applyCameraYamlText(text(data, size), "camera.yaml", &model);
+  model.validate();
+  DepthDecoder decoder(model.depth_scale, model.depth_invalid);
+}
+
+void intrinsicsMatrix(const std::uint8_t* data, std::size_t size) {
+  std::istringstream in(text(data, size));
+  CameraModel model;
+  applyIntrinsicsMatrix(in, "camera-intrinsics.txt", &model);
+  model.validate();
+}
+
+void depthPng(const std::uint8_t* data, std::size_t size) {
+  static const DepthDecoder kDecoder(5000.0, {0});
+  decodeDepthPng(bytes(data, size), "depth.png", kDecoder);
+}
+
+void colorImage(const std::uint8_t* data, std::size_t size) {
+  decodeColorImage(bytes(data, size), "color.png");
+}
+
+/// Mesh paths resolve against a folder that does not exist: inputs reach the file system only as
+/// an existence check.
+void worldYaml(const std::uint8_t* data, std::size_t size) {
+  sim::parseWorldSpec(text(data, size), "world.yaml", "/nonexistent-strata-fuzz");
+}
+
+void objMesh(const std::uint8_t* data, std::size_t size) {
+  std::istringstream in(text(data, size));
+  sim::readObj(in, "mesh.obj");
+}
+
+void plyMesh(const std::uint8_t* data, std::size_t size) { parsePly(text(data, size), "mesh.ply"); }
+
+template <typename Message>
+Message decoded(const std::uint8_t* data, std::size_t size) {
+  Message message;
+  lcm_io::decodePayload(data, static_cast<int>(size), message);
+  return message;
+}
+
+// The LCM entries do what strata-mapper's handlers do with a payload (apps/mapper_node).
+void lcmRgbdFrame(const std::uint8_t* data, std::size_t size) {
+  lcm_io::decodeFrame(decoded<rgbd_frame_t>(data, size));
+}
+
+void lcmCameraInfo(const std::uint8_t* data, std::size_t size) {
+  lcm_io::decodeCameraInfo(decoded<camera_info_t>(data, size));
+}
+
+void lcmPose(const std::uint8_t* data, std::size_t size) {
+  lcm_io::decodePose(decoded<pose_t>(data, size));
+}
+
+void lcmCommand(const std::uint8_t* data, std::size_t size) { decoded<command_t>(data, size); }
+
+const std::pair<const char*, Entry> kEntries[] = {
+    {"fuzz_map_file", mapFile},
+    {"fuzz_tum_file_list", tumFileList},
+    {"fuzz_tum_trajectory", tumTrajectory},
+    {"fuzz_pose_matrix", poseMatrix},
+    {"fuzz_camera_yaml", cameraYaml},
+    {"fuzz_intrinsics_matrix", intrinsicsMatrix},
+    {"fuzz_depth_png", depthPng},
+    {"fuzz_color_image", colorImage},
+    {"fuzz_world_yaml", worldYaml},
+    {"fuzz_obj_mesh", objMesh},
+    {"fuzz_ply_mesh", plyMesh},
+    {"fuzz_lcm_rgbd_frame", lcmRgbdFrame},
+    {"fuzz_lcm_camera_info", lcmCameraInfo},
+    {"fuzz_lcm_pose", lcmPose},
+    {"fuzz_lcm_command", lcmCommand},
+};
+
+}  // namespace
+
+Entry findEntry(const std::string& name) {
+  for (const auto& [entry_name, entry] : kEntries) {
+    if (name == entry_name) return entry;
+  }
+  return nullptr;
+}
+
+std::vector<std::string> entryNames() {
+  std::vector<std::string> names;
+  for (const auto& entry : kEntries) names.emplace_back(entry.first);
+  return names;
+}
+
+}  // namespace strata::fuzz
