@@ -44,7 +44,9 @@ std::vector<Eigen::Vector3f> queryPoints(const EsdfMap& map, std::size_t count) 
   const Eigen::Vector3f box_size =
       (hi - lo + Eigen::Vector3i::Ones()).cast<float>() * map.voxel_size_m * kBlockEdge;
   for (std::size_t i = 0; i < count; ++i) {
-    const Eigen::Vector3f t(u(rng), u(rng), u(rng));
+    // One draw each, z first: the order of f(u(rng), u(rng)) is open in C++ (gcc and clang differ).
+    const float z = u(rng), y = u(rng), x = u(rng);
+    const Eigen::Vector3f t(x, y, z);
     if (i % 2 == 0) {
       points.push_back(box_lo + t.cwiseProduct(box_size));
     } else {

@@ -15,7 +15,9 @@ std::vector<Eigen::Vector3f> randomPointsIn(const Eigen::Vector3f& lo, const Eig
   std::vector<Eigen::Vector3f> points;
   points.reserve(count);
   for (std::size_t i = 0; i < count; ++i) {
-    const Eigen::Vector3f t(u(rng), u(rng), u(rng));
+    // One draw each, z first: the order of f(u(rng), u(rng)) is open in C++ (gcc and clang differ).
+    const float z = u(rng), y = u(rng), x = u(rng);
+    const Eigen::Vector3f t(x, y, z);
     points.push_back(lo + t.cwiseProduct(hi - lo));
   }
   return points;

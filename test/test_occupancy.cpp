@@ -108,9 +108,16 @@ void expectDeviceEqualsReference(Scans& scans, const std::string& what,
 GlobalVoxelIndex endpointVoxel(const RgbdFrame& frame, const CameraIntrinsics& in, float u, float v,
                                float depth_m, const OccupancyConfig& config) {
   OccupancyRayEnds ends;
-  occupancyRayEnds(u, v, depth_m,
-                   occupancyRayCamera(FrameCamera::from(in, frame.T_W_C), config, kVoxelM), ends);
-  return ends.end_vox.array().floor().cast<int>().matrix();
+  // A negative depth names the point that far behind the camera, mirrored through its centre
+  // (occupancyRayEnds refuses such a sample and leaves `ends` unset: reading it anyway gave a
+  // different voxel with each compiler).
+  const bool valid =
+      occupancyRayEnds(u, v, std::fabs(depth_m),
+                       occupancyRayCamera(FrameCamera::from(in, frame.T_W_C), config, kVoxelM), ends);
+  EXPECT_TRUE(valid) << "depth " << depth_m;
+  const Eigen::Vector3f end_vox =
+      depth_m >= 0.0f ? ends.end_vox : Eigen::Vector3f(2.0f * ends.origin_vox - ends.end_vox);
+  return end_vox.array().floor().cast<int>().matrix();
 }
 
 /// Class and log-odds of `voxel` on both sides; they must agree.

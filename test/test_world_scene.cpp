@@ -60,8 +60,11 @@ TEST(World, BatchedIntersectMatchesSingleRays) {
   std::uniform_real_distribution<float> u(-1.0f, 1.0f);
   std::vector<Ray> rays(3000);
   for (Ray& ray : rays) {
-    ray.origin_W = Eigen::Vector3f(2.5f + u(rng), 2.0f + u(rng), 1.2f + 0.5f * u(rng));
-    ray.direction_W = Eigen::Vector3f(u(rng), u(rng), u(rng)).normalized();
+    // One draw per statement, last coordinate first: the order of f(u(rng), u(rng)) is open in C++.
+    const float oz = u(rng), oy = u(rng), ox = u(rng);
+    ray.origin_W = Eigen::Vector3f(2.5f + ox, 2.0f + oy, 1.2f + 0.5f * oz);
+    const float dz = u(rng), dy = u(rng), dx = u(rng);
+    ray.direction_W = Eigen::Vector3f(dx, dy, dz).normalized();
   }
   std::vector<RayHit> batch, single;
   scene->intersect(rays, batch);
@@ -80,7 +83,8 @@ TEST(World, SignedDistanceMatchesAnalyticBoxRoom) {
   std::uniform_real_distribution<double> ux(0.01, 3.99), uy(0.01, 2.99), uz(0.01, 2.49);
   int checked = 0;
   for (int i = 0; i < 400; ++i) {
-    const Eigen::Vector3d p(ux(rng), uy(rng), uz(rng));
+    const double z = uz(rng), y = uy(rng), x = ux(rng);  // one draw each, in a fixed order
+    const Eigen::Vector3d p(x, y, z);
     const Eigen::Vector3f pf = p.cast<float>();
     const double expected = analyticBoxRoomSdf(pf.cast<double>());
     if (std::abs(expected) < 1e-3) continue;  // on a surface the sign is a coin toss

@@ -15,8 +15,9 @@ inline constexpr float kMaxVoxelCoord = 8.0e6f;
 /// The voxel holding p; false when p is not finite or beyond the block range.
 inline bool voxelOf(const Eigen::Vector3f& p_W, float voxel_size_m, GlobalVoxelIndex* v) {
   const Eigen::Vector3f g = p_W / voxel_size_m;
-  // NOTE: written so NaN fails the test (every comparison with NaN is false).
-  if (!(g.cwiseAbs().maxCoeff() < kMaxVoxelCoord)) return false;
+  // NOTE: allFinite first: Eigen's maxCoeff may skip a NaN coefficient, and a NaN cast to int is
+  // undefined behaviour (UndefinedBehaviorSanitizer found it on the NaN query points).
+  if (!g.allFinite() || !(g.cwiseAbs().maxCoeff() < kMaxVoxelCoord)) return false;
   *v = g.array().floor().cast<int>().matrix();
   return true;
 }

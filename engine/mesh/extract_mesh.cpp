@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -45,9 +46,16 @@ std::uint32_t resolveExternal(const PartLayout& layout, std::size_t part, std::u
 void copyPart(const PartLayout& layout, std::size_t i, Mesh& mesh) {
   const BlockMeshPart& part = layout.parts[i];
   const std::size_t v0 = layout.vertex_offset[i];
-  std::copy(part.vertices.begin(), part.vertices.end(), mesh.vertices.begin() + v0);
-  std::copy(part.normals.begin(), part.normals.end(), mesh.normals.begin() + v0);
-  std::copy(part.colors.begin(), part.colors.end(), mesh.colors.begin() + v0);
+  // NOTE: only attributes the mesh has: begin() + v0 of an empty vector (no normals asked for, no
+  // colour) is pointer arithmetic on null, undefined even when nothing is copied
+  // (UndefinedBehaviorSanitizer found it).
+  const auto copy_into = [v0](const auto& from, auto& to) {
+    if (from.empty()) return;
+    std::copy(from.begin(), from.end(), to.begin() + static_cast<std::ptrdiff_t>(v0));
+  };
+  copy_into(part.vertices, mesh.vertices);
+  copy_into(part.normals, mesh.normals);
+  copy_into(part.colors, mesh.colors);
   std::size_t out = layout.triangle_offset[i];
   for (const auto& refs : part.triangles) {
     Eigen::Vector3i& tri = mesh.triangles[out++];
