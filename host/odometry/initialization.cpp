@@ -12,35 +12,60 @@ Eigen::Matrix3d rotationBetween(const Eigen::Vector3d& a, const Eigen::Vector3d&
   return Eigen::Quaterniond::FromTwoVectors(a, b).toRotationMatrix();
 }
 
-std::optional<InitialState> initializeFromStandstill(const std::vector<ImuMeasurement>& samples,
-                                                     double t_end_s,
-                                                     const StandstillConfig& config) {
-  Eigen::Vector3d sum_w = Eigen::Vector3d::Zero(), sum_a = Eigen::Vector3d::Zero();
-  Eigen::Vector3d sq_w = Eigen::Vector3d::Zero(), sq_a = Eigen::Vector3d::Zero();
-  double t_min = t_end_s, t_max = t_end_s - config.window_s;
+namespace {
+
+struct WindowStats {
   int count = 0;
+  double span_s = 0.0;
+  Eigen::Vector3d mean_w = Eigen::Vector3d::Zero(), mean_a = Eigen::Vector3d::Zero();
+  Eigen::Vector3d std_w = Eigen::Vector3d::Zero(), std_a = Eigen::Vector3d::Zero();
+};
+
+WindowStats windowStats(const std::vector<ImuMeasurement>& samples, double t_end_s,
+                        double window_s) {
+  WindowStats w;
+  Eigen::Vector3d sq_w = Eigen::Vector3d::Zero(), sq_a = Eigen::Vector3d::Zero();
+  double t_min = t_end_s, t_max = t_end_s;
   for (const ImuMeasurement& m : samples) {
-    if (m.t_s < t_end_s - config.window_s - 1e-9 || m.t_s > t_end_s + 1e-9) continue;
-    sum_w += m.gyro_rad_s;
-    sum_a += m.accel_mps2;
+    if (m.t_s < t_end_s - window_s - 1e-9 || m.t_s > t_end_s + 1e-9) continue;
+    w.mean_w += m.gyro_rad_s;
+    w.mean_a += m.accel_mps2;
     sq_w += m.gyro_rad_s.cwiseAbs2();
     sq_a += m.accel_mps2.cwiseAbs2();
     t_min = std::min(t_min, m.t_s);
-    t_max = std::max(t_max, m.t_s);
-    ++count;
+    t_max = w.count == 0 ? m.t_s : std::max(t_max, m.t_s);
+    ++w.count;
   }
-  if (count < 10 || t_max - t_min < 0.9 * config.window_s) return std::nullopt;
-  const Eigen::Vector3d mean_w = sum_w / count, mean_a = sum_a / count;
-  const Eigen::Vector3d std_w = (sq_w / count - mean_w.cwiseAbs2()).cwiseMax(0.0).cwiseSqrt();
-  const Eigen::Vector3d std_a = (sq_a / count - mean_a.cwiseAbs2()).cwiseMax(0.0).cwiseSqrt();
-  if (std_w.maxCoeff() > config.max_gyro_stddev_rad_s ||
-      std_a.maxCoeff() > config.max_accel_stddev_mps2 || mean_a.norm() < 1e-3) {
-    return std::nullopt;
-  }
+  if (w.count == 0) return w;
+  w.span_s = t_max - t_min;
+  w.mean_w /= w.count;
+  w.mean_a /= w.count;
+  w.std_w = (sq_w / w.count - w.mean_w.cwiseAbs2()).cwiseMax(0.0).cwiseSqrt();
+  w.std_a = (sq_a / w.count - w.mean_a.cwiseAbs2()).cwiseMax(0.0).cwiseSqrt();
+  return w;
+}
+
+}  // namespace
+
+ImuMotion classifyMotion(const std::vector<ImuMeasurement>& samples, double t_end_s,
+                         const StandstillConfig& config) {
+  const WindowStats w = windowStats(samples, t_end_s, config.window_s);
+  if (w.count < 10 || w.span_s < 0.9 * config.window_s) return ImuMotion::kTooFewSamples;
+  const bool still = w.std_w.maxCoeff() <= config.max_gyro_stddev_rad_s &&
+                     w.std_a.maxCoeff() <= config.max_accel_stddev_mps2;
+  return still ? ImuMotion::kStill : ImuMotion::kMoving;
+}
+
+std::optional<InitialState> initializeFromStandstill(const std::vector<ImuMeasurement>& samples,
+                                                     double t_end_s,
+                                                     const StandstillConfig& config) {
+  if (classifyMotion(samples, t_end_s, config) != ImuMotion::kStill) return std::nullopt;
+  const WindowStats w = windowStats(samples, t_end_s, config.window_s);
+  if (w.mean_a.norm() < 1e-3) return std::nullopt;
   InitialState state;
   // At rest f_B = R_W_B^T (0 - g_W) = |g| R_W_B^T e_z.
-  state.R_W_B = rotationBetween(mean_a.normalized(), Eigen::Vector3d::UnitZ());
-  state.bias.gyro_rad_s = mean_w;
+  state.R_W_B = rotationBetween(w.mean_a.normalized(), Eigen::Vector3d::UnitZ());
+  state.bias.gyro_rad_s = w.mean_w;
   return state;
 }
 

@@ -32,6 +32,13 @@ struct InitialState {
   ImuBias bias;
 };
 
+enum class ImuMotion { kTooFewSamples, kStill, kMoving };
+/// Whether the samples with t in [t_end - window_s, t_end] show the body at rest (per-axis
+/// standard deviations below the config's bounds); kTooFewSamples when they span under 90 % of
+/// the window.
+ImuMotion classifyMotion(const std::vector<ImuMeasurement>& samples, double t_end_s,
+                         const StandstillConfig& config);
+
 /// Standstill initialisation from samples with t in [t_end - window_s, t_end]. nullopt when the
 /// samples do not span the window (90 % of it) or the body moved. World z is up: R_W_B maps the
 /// mean specific force onto +z, with the smallest rotation (yaw of B's x kept where possible).

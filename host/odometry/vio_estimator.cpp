@@ -154,6 +154,13 @@ FrameEstimate VioEstimator::Impl::initialise(const FrameObservations& frame) {
     e.reason = "waiting for standstill (monocular rig: no in-motion initialisation)";
     return e;
   }
+  // Only in motion: until the IMU shows motion, standstill initialisation is the better one.
+  if (classifyMotion(imu, frame.t_s, config.standstill) != ImuMotion::kMoving) {
+    window.clear();
+    FrameEstimate e = output(frame.t_s);
+    e.reason = "waiting for standstill (or motion) over standstill.window_s of IMU samples";
+    return e;
+  }
   if (!window.keyframes.empty() && imu.front().t_s > window.keyframes.back().t_s) window.clear();
   if (window.keyframes.empty() && imu.front().t_s > frame.t_s - 1e-9) {
     FrameEstimate e = output(frame.t_s);
@@ -292,21 +299,25 @@ std::string VioEstimator::Impl::healthProblem(const ceres::Solver::Summary& summ
     return "accel bias " + std::to_string(b.accel_mps2.norm()) +
            " m/s^2 above max_accel_bias_mps2";
   }
-  std::vector<double> errors;
+  std::vector<double> errors, errors_newest;
   std::set<std::uint64_t> tracks;
   for (const Factor& f : factors) {
     if (f.kind != FactorKind::kReprojection) continue;
     errors.push_back(internal::Window::reprojectionErrorPx(f));
     tracks.insert(f.track_id);
-    if (f.keyframe_id == newest.id) ++out->observations_newest;
+    if (f.keyframe_id == newest.id) errors_newest.push_back(errors.back());
   }
   out->landmarks = static_cast<int>(tracks.size());
-  if (!errors.empty()) {
-    std::nth_element(errors.begin(), errors.begin() + errors.size() / 2, errors.end());
-    const double median = errors[errors.size() / 2];
+  out->observations_newest = static_cast<int>(errors_newest.size());
+  // The whole window, and the newest frame alone (where bad data shows first).
+  for (auto* e : {&errors, &errors_newest}) {
+    if (static_cast<int>(e->size()) < config.min_observations) continue;
+    std::nth_element(e->begin(), e->begin() + e->size() / 2, e->end());
+    const double median = (*e)[e->size() / 2];
     if (median > config.max_median_reprojection_px) {
-      return "median reprojection error " + std::to_string(median) +
-             " px above max_median_reprojection_px";
+      return std::string("median reprojection error ") + std::to_string(median) + " px " +
+             (e == &errors ? "in the window" : "in the newest frame") +
+             " above max_median_reprojection_px";
     }
   }
   frames_without_vision =

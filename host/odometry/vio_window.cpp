@@ -151,12 +151,12 @@ std::vector<Factor> Window::buildFactors(const SolveSettings& s) const {
         continue;
       }
       double* pose = self->keyframe(o.keyframe_id).pose;
-      add(ReprojectionFactor::create(l.bearing, rig_.T_B_Cl, rig_.T_B_Cl, rig_.left, o.uv_left,
-                                     s.pixel_sigma_px),
+      add(new ReprojectionCost(l.bearing, rig_.T_B_Cl, rig_.T_B_Cl, rig_.left, o.uv_left,
+                               s.pixel_sigma_px),
           {anchor_pose, pose, &l.rho}, o.keyframe_id);
       if (o.uv_right) {
-        add(ReprojectionFactor::create(l.bearing, rig_.T_B_Cl, rig_.T_B_Cr, *rig_.right,
-                                       *o.uv_right, s.pixel_sigma_px),
+        add(new ReprojectionCost(l.bearing, rig_.T_B_Cl, rig_.T_B_Cr, *rig_.right, *o.uv_right,
+                                 s.pixel_sigma_px),
             {anchor_pose, pose, &l.rho}, o.keyframe_id);
       }
     }
@@ -246,8 +246,24 @@ void Window::marginaliseOldest(const std::vector<Factor>& factors) {
   for (Keyframe& k : keyframes) manifolds[k.pose] = &pose_manifold_;
   std::unique_ptr<LinearPrior> next = marginalise(linearised, drop, manifolds);
   prior = std::move(next);
+  // Landmarks anchored in the oldest keyframe live on, re-anchored in the next keyframe that saw
+  // them, with their remaining observations (NOTE: those were also folded into the prior, so they
+  // count twice: VINS-Mono's approximation, which keeps the window constrained by vision when
+  // every track started in the same keyframe, as at standstill).
   for (auto it = landmarks.begin(); it != landmarks.end();) {
-    it = it->second.anchor_id == oldest.id ? landmarks.erase(it) : std::next(it);
+    Landmark& l = it->second;
+    auto& obs = l.observations;
+    obs.erase(std::remove_if(obs.begin(), obs.end(),
+                             [&](const Observation& o) { return o.keyframe_id == oldest.id; }),
+              obs.end());
+    if (l.anchor_id == oldest.id && !obs.empty()) {
+      const Eigen::Vector3d p_W = T_W_C(l.anchor_id, false) * (l.bearing / std::max(l.rho, 1e-9));
+      l.anchor_id = obs.front().keyframe_id;
+      l.bearing = rig_.left.unproject(obs.front().uv_left);
+      const double z = (T_W_C(l.anchor_id, false).inverse() * p_W).z();
+      l.rho = l.rho > 0.0 && z > 1e-3 ? 1.0 / z : 0.0;
+    }
+    it = obs.empty() ? landmarks.erase(it) : std::next(it);
   }
   keyframes.pop_front();
   if (!keyframes.empty()) keyframes.front().from_previous.reset();

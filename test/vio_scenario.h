@@ -1,0 +1,48 @@
+#pragma once
+// Synthetic visual-inertial data for the odometry tests: a simulated hand-held trajectory
+// (optionally after a standstill), the simulator's IMU model (white noise + bias walk, Kalibr's
+// discrete form) and landmarks on the walls of a room projected into a stereo pair with pixel
+// noise. No images: the observations are what a perfect front end would report.
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <vector>
+
+#include "odometry/camera_rig.h"
+#include "odometry/feature_observation.h"
+#include "odometry/imu_types.h"
+#include "sim/sensors/imu.h"
+#include "sim/sensors/trajectory.h"
+
+namespace strata::odometry::test {
+
+struct ScenarioConfig {
+  double standstill_s = 1.0;  // the body rests this long before the trajectory starts
+  double camera_rate_hz = 20.0;
+  double pixel_noise_px = 0.5;
+  int max_features = 100;     // per frame, chosen by a fixed per-landmark priority
+  int landmarks = 1500;
+  sim::ImuConfig imu;         // T_C_B is set from the rig
+  std::uint64_t seed = 5;
+};
+
+struct Scenario {
+  CameraRig rig;
+  std::vector<ImuMeasurement> imu;
+  std::vector<FrameObservations> frames;
+  std::vector<Eigen::Isometry3d> T_W_C_truth;  // per frame, left camera
+  std::vector<Eigen::Isometry3d> T_W_B_truth;
+  std::vector<Eigen::Vector3d> v_W_B_truth;
+  std::vector<sim::ImuSample> imu_truth;  // with the true biases
+};
+
+/// The room loop of the sensor tests, ~10 s.
+sim::Trajectory roomTrajectory();
+/// A stereo rig with EuRoC-like intrinsics, an 11 cm baseline and a rotated, offset IMU.
+CameraRig stereoRig();
+Scenario makeScenario(const ScenarioConfig& config);
+
+/// Root-mean-square position error after the best rigid alignment (Umeyama, no scale).
+double ateRmseSe3(const std::vector<Eigen::Vector3d>& estimate,
+                  const std::vector<Eigen::Vector3d>& truth);
+
+}  // namespace strata::odometry::test
