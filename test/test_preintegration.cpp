@@ -14,7 +14,7 @@
 #include "odometry/reprojection_factor.h"
 #include "odometry/so3.h"
 #include "sim/sensors/imu.h"
-#include "vio_scenario.h"
+#include "odometry/synthetic/vio_scenario.h"
 
 namespace strata::odometry {
 namespace {
@@ -46,7 +46,7 @@ sim::ImuConfig leverArmConfig() {
 }
 
 TEST(Preintegration, IdealImuMatchesTheTrueRelativeMotion) {
-  const sim::Trajectory trajectory = test::roomTrajectory();
+  const sim::Trajectory trajectory = synthetic::roomTrajectory();
   const sim::ImuConfig config = leverArmConfig();
   const std::vector<ImuMeasurement> samples = toMeasurements(sim::simulateImu(trajectory, config, 1));
   const Eigen::Vector3d g(0.0, 0.0, -config.gravity_mps2);
@@ -71,7 +71,7 @@ TEST(Preintegration, IdealImuMatchesTheTrueRelativeMotion) {
 }
 
 TEST(Preintegration, BiasJacobiansMatchReintegrationForSmallBiasChanges) {
-  const sim::Trajectory trajectory = test::roomTrajectory();
+  const sim::Trajectory trajectory = synthetic::roomTrajectory();
   const std::vector<ImuMeasurement> samples =
       toMeasurements(sim::simulateImu(trajectory, leverArmConfig(), 1));
   Preintegration pre(ImuBias{}, ImuNoise{});
@@ -100,7 +100,7 @@ TEST(Preintegration, BiasJacobiansMatchReintegrationForSmallBiasChanges) {
 }
 
 TEST(Preintegration, CovarianceMatchesMonteCarlo) {
-  const sim::Trajectory trajectory = test::roomTrajectory();
+  const sim::Trajectory trajectory = synthetic::roomTrajectory();
   const std::vector<ImuMeasurement> exact =
       toMeasurements(sim::simulateImu(trajectory, leverArmConfig(), 1));
   const ImuNoise noise;
@@ -137,7 +137,7 @@ TEST(Preintegration, CovarianceMatchesMonteCarlo) {
 }
 
 TEST(ImuFactor, ZeroAtTruthAndWhitenedByTheCovariance) {
-  const sim::Trajectory trajectory = test::roomTrajectory();
+  const sim::Trajectory trajectory = synthetic::roomTrajectory();
   const sim::ImuConfig config = leverArmConfig();
   const std::vector<ImuMeasurement> samples = toMeasurements(sim::simulateImu(trajectory, config, 1));
   auto pre = std::make_shared<Preintegration>(ImuBias{}, ImuNoise{});
@@ -171,7 +171,7 @@ TEST(ImuFactor, ZeroAtTruthAndWhitenedByTheCovariance) {
 }
 
 TEST(ReprojectionCost, AnalyticJacobiansMatchAutoDiff) {
-  const CameraRig rig = test::stereoRig();
+  const CameraRig rig = synthetic::stereoRig();
   std::mt19937_64 rng(11);
   std::normal_distribution<double> n(0.0, 1.0);
   int compared = 0;
@@ -261,10 +261,10 @@ TEST(Marginalisation, GivesTheSchurComplementOfALinearSystem) {
 }
 
 TEST(Initialisation, StandstillRecoversGravityDirectionAndGyroBias) {
-  test::ScenarioConfig config;
+  synthetic::ScenarioConfig config;
   config.standstill_s = 1.0;
   config.imu.initial_gyro_bias = Eigen::Vector3d(0.004, -0.006, 0.003);
-  const test::Scenario s = test::makeScenario(config);
+  const synthetic::Scenario s = synthetic::makeScenario(config);
   const std::optional<InitialState> init = initializeFromStandstill(s.imu, 0.9, StandstillConfig{});
   ASSERT_TRUE(init);
   const Eigen::Matrix3d R_true = s.T_W_B_truth[0].linear();
@@ -277,11 +277,11 @@ TEST(Initialisation, StandstillRecoversGravityDirectionAndGyroBias) {
 }
 
 TEST(Initialisation, InMotionAlignmentRecoversBiasGravityAndVelocity) {
-  test::ScenarioConfig config;
+  synthetic::ScenarioConfig config;
   config.standstill_s = 0.0;
   config.imu.noise = false;
   config.imu.initial_gyro_bias = Eigen::Vector3d(0.01, -0.02, 0.015);
-  const test::Scenario s = test::makeScenario(config);
+  const synthetic::Scenario s = synthetic::makeScenario(config);
   // Eight 20 Hz frames from t = 3 s, in a vision frame rotated and shifted away from W.
   Eigen::Isometry3d T_V_W = Eigen::Isometry3d::Identity();
   T_V_W.linear() = Eigen::AngleAxisd(0.7, Eigen::Vector3d(0.3, 1.0, -0.2).normalized()).matrix();

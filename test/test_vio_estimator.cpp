@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "odometry/vio_estimator.h"
-#include "vio_scenario.h"
+#include "odometry/synthetic/vio_scenario.h"
 
 namespace strata::odometry {
 namespace {
@@ -23,7 +23,7 @@ struct EstimatorRun {
 
 // Feeds IMU and frames from frame `first` on; `corrupt` may change a frame before it is given.
 template <typename Corrupt>
-EstimatorRun runEstimator(const test::Scenario& s, std::size_t first, const VioConfig& config,
+EstimatorRun runEstimator(const synthetic::Scenario& s, std::size_t first, const VioConfig& config,
                  Corrupt corrupt) {
   VioEstimator estimator(config, s.rig);
   EstimatorRun run;
@@ -54,7 +54,7 @@ EstimatorRun runEstimator(const test::Scenario& s, std::size_t first, const VioC
 }
 
 // Tracked frames of estimates[begin, end): ATE of the left camera positions.
-double segmentAte(const test::Scenario& s, std::size_t first, const EstimatorRun& run,
+double segmentAte(const synthetic::Scenario& s, std::size_t first, const EstimatorRun& run,
                   double t_begin_s, double t_end_s) {
   std::vector<Eigen::Vector3d> estimated, truth;
   for (std::size_t i = 0; i < run.estimates.size(); ++i) {
@@ -63,7 +63,7 @@ double segmentAte(const test::Scenario& s, std::size_t first, const EstimatorRun
     estimated.push_back(e.T_W_C.translation());
     truth.push_back(s.T_W_C_truth[first + i].translation());
   }
-  return estimated.size() < 3 ? 1e9 : test::ateRmseSe3(estimated, truth);
+  return estimated.size() < 3 ? 1e9 : synthetic::ateRmseSe3(estimated, truth);
 }
 
 // Iterations bound the solves, not time: the tests give the same figures on a loaded machine.
@@ -73,15 +73,15 @@ VioConfig deterministicConfig() {
   return config;
 }
 
-test::ScenarioConfig biasedScenario() {
-  test::ScenarioConfig config;
+synthetic::ScenarioConfig biasedScenario() {
+  synthetic::ScenarioConfig config;
   config.imu.initial_gyro_bias = Eigen::Vector3d(0.004, -0.006, 0.003);
   config.imu.initial_accel_bias = Eigen::Vector3d(0.03, -0.02, 0.04);
   return config;
 }
 
 TEST(VioEstimator, TracksASimulatedStereoSequenceFromStandstill) {
-  const test::Scenario s = test::makeScenario(biasedScenario());
+  const synthetic::Scenario s = synthetic::makeScenario(biasedScenario());
   const EstimatorRun run = runEstimator(s, 0, deterministicConfig(), [](std::size_t, FrameObservations*) {});
   // Standstill is detected once half a second of IMU is in; every frame after it tracks.
   ASSERT_GE(run.estimates.size(), 200u);
@@ -91,7 +91,7 @@ TEST(VioEstimator, TracksASimulatedStereoSequenceFromStandstill) {
     tracked += e.status == VioStatus::kTracking;
   }
   EXPECT_GE(tracked, run.estimates.size() - 12);
-  const double ate = test::ateRmseSe3(run.estimated, run.truth);
+  const double ate = synthetic::ateRmseSe3(run.estimated, run.truth);
   std::printf("standstill start: %zu tracked frames, ATE %.4f m, worst gravity error %.3f deg, "
               "%.1f ms per frame\n", tracked, ate, run.worst_up_error_rad * 180.0 / M_PI,
               1e3 * run.seconds / static_cast<double>(run.estimates.size()));
@@ -106,7 +106,7 @@ TEST(VioEstimator, TracksASimulatedStereoSequenceFromStandstill) {
 }
 
 TEST(VioEstimator, InitialisesInMotion) {
-  const test::Scenario s = test::makeScenario(biasedScenario());
+  const synthetic::Scenario s = synthetic::makeScenario(biasedScenario());
   const std::size_t first = 60;  // 2 s after the standstill: moving
   const EstimatorRun run = runEstimator(s, first, deterministicConfig(), [](std::size_t, FrameObservations*) {});
   std::size_t tracked = 0;
@@ -115,7 +115,7 @@ TEST(VioEstimator, InitialisesInMotion) {
     tracked += e.status == VioStatus::kTracking;
   }
   EXPECT_GE(tracked, run.estimates.size() - 12);
-  const double ate = test::ateRmseSe3(run.estimated, run.truth);
+  const double ate = synthetic::ateRmseSe3(run.estimated, run.truth);
   std::printf("in-motion start: %zu tracked frames, ATE %.4f m, worst gravity error %.3f deg, "
               "%.1f ms per frame\n", tracked, ate, run.worst_up_error_rad * 180.0 / M_PI,
               1e3 * run.seconds / static_cast<double>(run.estimates.size()));
@@ -124,7 +124,7 @@ TEST(VioEstimator, InitialisesInMotion) {
 }
 
 TEST(VioEstimator, CorruptedObservationsAreReportedAndTrackingRestarts) {
-  const test::Scenario s = test::makeScenario(biasedScenario());
+  const synthetic::Scenario s = synthetic::makeScenario(biasedScenario());
   // From 4 s to 5 s the track ids are shuffled: every association is wrong.
   std::mt19937_64 rng(7);
   auto corrupt = [&](std::size_t f, FrameObservations* frame) {

@@ -1,10 +1,10 @@
-#include "vio_scenario.h"
+#include "odometry/synthetic/vio_scenario.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <random>
 
-namespace strata::odometry::test {
+namespace strata::odometry::synthetic {
 namespace {
 
 std::vector<Eigen::Vector3d> roomLandmarks(int count, std::mt19937_64& rng) {
@@ -154,4 +154,4 @@ double ateRmseSe3(const std::vector<Eigen::Vector3d>& estimate,
   return std::sqrt(sum / static_cast<double>(estimate.size()));
 }
 
-}  // namespace strata::odometry::test
+}  // namespace strata::odometry::synthetic

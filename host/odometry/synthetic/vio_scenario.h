@@ -1,5 +1,5 @@
 #pragma once
-// Synthetic visual-inertial data for the odometry tests: a simulated hand-held trajectory
+// Synthetic visual-inertial data for the odometry tests and benchmark: a simulated hand-held trajectory
 // (optionally after a standstill), the simulator's IMU model (white noise + bias walk, Kalibr's
 // discrete form) and landmarks on the walls of a room projected into a stereo pair with pixel
 // noise. No images: the observations are what a perfect front end would report.
@@ -13,7 +13,7 @@
 #include "sim/sensors/imu.h"
 #include "sim/sensors/trajectory.h"
 
-namespace strata::odometry::test {
+namespace strata::odometry::synthetic {
 
 struct ScenarioConfig {
   double standstill_s = 1.0;  // the body rests this long before the trajectory starts
@@ -41,8 +41,9 @@ sim::Trajectory roomTrajectory();
 CameraRig stereoRig();
 Scenario makeScenario(const ScenarioConfig& config);
 
-/// Root-mean-square position error after the best rigid alignment (Umeyama, no scale).
+/// Root-mean-square position error after the best rigid alignment (Umeyama, no scale): the
+/// back end's own check until it moves to the trajectory-error library.
 double ateRmseSe3(const std::vector<Eigen::Vector3d>& estimate,
                   const std::vector<Eigen::Vector3d>& truth);
 
-}  // namespace strata::odometry::test
+}  // namespace strata::odometry::synthetic
