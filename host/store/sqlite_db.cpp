@@ -34,7 +34,8 @@ Database::Database(const std::string& path, bool create) : path_(path) {
 Database::~Database() { sqlite3_close(db_); }
 
 void Database::fail(int rc, const char* step) const {
-  const std::string message = std::string(sqlite3_errmsg(db_)) + " (" + sqlite3_errstr(rc) + ")";
+  std::string message = sqlite3_errmsg(db_);
+  if (message != sqlite3_errstr(rc)) message += std::string(" (") + sqlite3_errstr(rc) + ")";
   const std::string what = "map database '" + path_ + "': " + step + ": " + message;
   if (isInputProblem(rc)) throw InputError(what);
   throw Error(what);
