@@ -2,6 +2,7 @@
 // versions are checked, damaged files and failed writes are refused with clear messages, and
 // changed resources are detected.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -301,13 +302,52 @@ TEST(Store, FullDatabaseFailsTheBatchAndKeepsWhatWasCommitted) {
   fs::remove_all(dir);
 }
 
+/// Opens a new map in a folder without write permission: 0 when refused naming the file.
+/// Then writes to an existing map there (the WAL journal needs files beside it).
+int tryReadOnlyFolder(const fs::path& dir) {
+  int failures = 0;
+  for (const char* name : {"map.sqlite", "existing.sqlite"}) {
+    const fs::path db = dir / name;
+    const std::string message = errorOf([&] {
+      Store store(db.string());
+      store.addSession("s", "/somewhere");
+    });
+    std::printf("read-only folder: %s\n", message.c_str());
+    failures += message.find(db.string()) != std::string::npos ? 0 : 1;
+  }
+  return failures;
+}
+
 TEST(Store, ReadOnlyFolderIsRefusedNamingTheFile) {
-  if (::geteuid() == 0) GTEST_SKIP() << "running as root: folder permissions do not apply";
   const fs::path dir = freshStoreDir("read_only");
-  fs::permissions(dir, fs::perms::owner_read | fs::perms::owner_exec);
-  const std::string message = errorOf([&] { Store store((dir / "map.sqlite").string()); });
+  { Store store((dir / "existing.sqlite").string()); }
+  fs::permissions(dir / "existing.sqlite", fs::perms::all);
+  fs::permissions(dir, fs::perms::owner_read | fs::perms::owner_exec | fs::perms::group_read |
+                           fs::perms::group_exec | fs::perms::others_read |
+                           fs::perms::others_exec);
+  int result = 0;
+  if (::geteuid() != 0) {
+    result = tryReadOnlyFolder(dir);
+  } else {
+    // Root ignores folder permissions: try as the unprivileged user 'nobody' in a child.
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+      if (::setgid(65534) != 0 || ::setuid(65534) != 0) ::_exit(3);
+      std::fflush(stdout);
+      const int code = tryReadOnlyFolder(dir);
+      std::fflush(stdout);
+      ::_exit(code);
+    }
+    int status = 0;
+    ASSERT_EQ(::waitpid(child, &status, 0), child);
+    ASSERT_TRUE(WIFEXITED(status));
+    result = WEXITSTATUS(status);
+  }
   fs::permissions(dir, fs::perms::owner_all);
-  EXPECT_NE(message.find((dir / "map.sqlite").string()), std::string::npos) << message;
+  EXPECT_EQ(result, 0) << "the error did not name the file (see the printed message)";
+  EXPECT_FALSE(fs::exists(dir / "map.sqlite"));
+  EXPECT_TRUE(Store((dir / "existing.sqlite").string()).sessions().empty());
   fs::remove_all(dir);
 }
 

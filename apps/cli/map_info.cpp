@@ -48,8 +48,8 @@ const char* problemName(store::ResourceProblem::Kind kind) {
 std::string mapInfoTable(const std::string& db_path,
                          const std::vector<store::SessionSummary>& sessions,
                          const std::vector<store::ResourceProblem>& problems, bool verified) {
-  std::string out = format("%s: %zu sessions (schema version %d)\n", db_path.c_str(),
-                           sessions.size(), store::kSchemaVersion);
+  std::string out = format("%s: %zu session%s (schema version %d)\n", db_path.c_str(),
+                           sessions.size(), sessions.size() == 1 ? "" : "s", store::kSchemaVersion);
   out += format("%4s  %-20s %-7s %9s %9s %8s %5s %5s %9s %9s %9s\n", "id", "name", "aligned",
                 "keyframes", "optimised", "odometry", "loop", "prior", "resources", "path_m",
                 "span_s");
