@@ -201,6 +201,11 @@ TEST(Store, ExceptionInsideATransactionRollsEverythingBack) {
   loop.to_keyframe = ids[1];
   EXPECT_THROW(store.addEdges({loop}), InputError);
   EXPECT_THROW(store.addSession("again", (dir / "kept").string()), InputError);
+  store::FeatureSet features;  // 2 keypoints, descriptors for 1
+  features.descriptor_bytes = 4;
+  features.keypoints_px = {{1.0f, 2.0f}, {3.0f, 4.0f}};
+  features.descriptors.resize(4);
+  EXPECT_THROW(store.setFeatures(ids[0], features), InputError);
   // Nested batches commit with the outermost one.
   {
     auto outer = store.beginTransaction();
@@ -323,8 +328,7 @@ TEST(Store, ReadOnlyFolderIsRefusedNamingTheFile) {
   { Store store((dir / "existing.sqlite").string()); }
   fs::permissions(dir / "existing.sqlite", fs::perms::all);
   fs::permissions(dir, fs::perms::owner_read | fs::perms::owner_exec | fs::perms::group_read |
-                           fs::perms::group_exec | fs::perms::others_read |
-                           fs::perms::others_exec);
+                           fs::perms::group_exec | fs::perms::others_read | fs::perms::others_exec);
   int result = 0;
   if (::geteuid() != 0) {
     result = tryReadOnlyFolder(dir);

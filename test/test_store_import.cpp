@@ -67,7 +67,8 @@ TEST_F(StoreImport, ExportGivesBackTheSessionOdometry) {
   o.out_dir = (*dir_ / "export").string();
   ASSERT_EQ(apps::runMap(o), 0);
   const auto source = tum::readTrajectory((session(true) / "odometry.txt").string());
-  const auto exported = tum::readTrajectory((*dir_ / "export" / "session_0" / "odometry.txt").string());
+  const auto exported =
+      tum::readTrajectory((*dir_ / "export" / "session_0" / "odometry.txt").string());
   ASSERT_EQ(source.size(), std::size_t{kFrames});
   ASSERT_EQ(exported.size(), source.size());
   for (std::size_t i = 0; i < source.size(); ++i) {

@@ -1,6 +1,7 @@
 // Crash safety of the session store: a child process imports big sessions one transaction each
 // and is SIGKILLed while it writes one; the reopened database passes SQLite's integrity and
-// foreign-key checks and holds exactly the sessions that committed, each whole.
+// foreign-key checks and holds exactly the sessions that committed, each whole. A second Store
+// reading the file meanwhile sees committed batches only.
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -110,6 +111,24 @@ TEST(StoreKill, KilledImportLeavesExactlyTheCommittedSessions) {
   }
   // Sessions of 5000 keyframes take far longer to write than the delay before the kill.
   EXPECT_GT(killed_mid_write, 0);
+  fs::remove_all(dir);
+}
+
+TEST(StoreKill, ReaderSeesOnlyCommittedBatchesWhileAWriterWorks) {
+  const fs::path dir = freshStoreDir("reader");
+  const fs::path db = dir / "map.sqlite";
+  store::Store writer(db.string());
+  store::Store reader(db.string());
+  writer.addSession("first", "/virtual/first");
+  {
+    auto transaction = writer.beginTransaction();
+    const std::int64_t s = writer.addSession("second", "/virtual/second");
+    writer.addKeyframes({store::KeyframeRecord{0, s, 1.0, samplePose(1), {}, {}}});
+    EXPECT_EQ(reader.sessions().size(), 1u);  // the open batch is invisible
+    transaction.commit();
+  }
+  EXPECT_EQ(reader.sessions().size(), 2u);
+  EXPECT_EQ(reader.keyframes(reader.sessions()[1].id).size(), 1u);
   fs::remove_all(dir);
 }
 

@@ -33,10 +33,11 @@ int runImport(const MapOptions& o) {
       continue;
     }
     ++imported;
-    std::printf("%s: session %lld '%s': %zu keyframes of %zu frames, %zu odometry edges, %zu "
-                "resources (odometry from %s)\n",
-                dir.c_str(), static_cast<long long>(r.session_id), r.name.c_str(), r.keyframes,
-                r.frames, r.edges, r.resources, r.odometry_file.c_str());
+    std::printf(
+        "%s: session %lld '%s': %zu keyframes of %zu frames, %zu odometry edges, %zu "
+        "resources (odometry from %s)\n",
+        dir.c_str(), static_cast<long long>(r.session_id), r.name.c_str(), r.keyframes, r.frames,
+        r.edges, r.resources, r.odometry_file.c_str());
   }
   std::printf("Imported %zu of %zu session folders into %s\n", imported, o.session_dirs.size(),
               o.db_path.c_str());
@@ -78,23 +79,26 @@ CLI::App* addMapCommand(CLI::App& app, MapOptions& o) {
   import->add_option("--db", o.db_path, "Map database (created when absent)")->required();
   import->add_option("--keyframe-every", o.keyframe_every, "A keyframe every N frames (0: off)")
       ->capture_default_str();
-  import->add_option("--keyframe-distance-m", o.keyframe_distance_m,
-                     "Or after this much motion, metres (0: off)")
+  import
+      ->add_option("--keyframe-distance-m", o.keyframe_distance_m,
+                   "Or after this much motion, metres (0: off)")
       ->capture_default_str();
   import->add_flag("--quiet", o.quiet, "No progress bar");
-  import->callback([&o] { o.action = "import"; });
-  CLI::App* info = map->add_subcommand("info", "Sessions, counts, path lengths and time spans");
-  info->add_option("--db", o.db_path, "Map database")->required();
-  info->add_flag("--json", o.json, "Print JSON instead of a table");
-  info->add_flag("--verify", o.verify, "Check every resource's size and CRC-32 (exit 2 if any "
-                                       "is missing or changed)");
-  info->callback([&o] { o.action = "info"; });
-  CLI::App* out = map->add_subcommand("export", "Each session's keyframe trajectory as TUM files");
-  out->add_option("--db", o.db_path, "Map database")->required();
-  out->add_option("--out", o.out_dir, "Output folder")->required();
-  out->callback([&o] { o.action = "export"; });
-  return map;
-}
+  import->callback([&o] { o.action = "import";
+});
+CLI::App* info = map->add_subcommand("info", "Sessions, counts, path lengths and time spans");
+info->add_option("--db", o.db_path, "Map database")->required();
+info->add_flag("--json", o.json, "Print JSON instead of a table");
+info->add_flag("--verify", o.verify,
+               "Check every resource's size and CRC-32 (exit 2 if any "
+               "is missing or changed)");
+info->callback([&o] { o.action = "info"; });
+CLI::App* out = map->add_subcommand("export", "Each session's keyframe trajectory as TUM files");
+out->add_option("--db", o.db_path, "Map database")->required();
+out->add_option("--out", o.out_dir, "Output folder")->required();
+out->callback([&o] { o.action = "export"; });
+return map;
+}  // namespace strata::apps
 
 int runMap(const MapOptions& o) {
   const std::string command = "strata map " + o.action;

@@ -36,9 +36,12 @@ std::string jsonString(const std::string& s) {
 
 const char* problemName(store::ResourceProblem::Kind kind) {
   switch (kind) {
-    case store::ResourceProblem::Kind::kMissing: return "missing";
-    case store::ResourceProblem::Kind::kSizeChanged: return "size_changed";
-    case store::ResourceProblem::Kind::kChecksumChanged: return "checksum_changed";
+    case store::ResourceProblem::Kind::kMissing:
+      return "missing";
+    case store::ResourceProblem::Kind::kSizeChanged:
+      return "size_changed";
+    case store::ResourceProblem::Kind::kChecksumChanged:
+      return "checksum_changed";
   }
   return "?";
 }
@@ -79,30 +82,32 @@ std::string mapInfoTable(const std::string& db_path,
 std::string mapInfoJson(const std::string& db_path,
                         const std::vector<store::SessionSummary>& sessions,
                         const std::vector<store::ResourceProblem>& problems, bool verified) {
-  std::string out = "{\n  \"database\": " + jsonString(db_path) +
-                    format(",\n  \"schema_version\": %d,\n  \"sessions\": [", store::kSchemaVersion);
+  std::string out =
+      "{\n  \"database\": " + jsonString(db_path) +
+      format(",\n  \"schema_version\": %d,\n  \"sessions\": [", store::kSchemaVersion);
   for (std::size_t i = 0; i < sessions.size(); ++i) {
     const auto& s = sessions[i];
     out += std::string(i == 0 ? "\n" : ",\n") + "    {\"id\": " + std::to_string(s.session.id) +
            ", \"name\": " + jsonString(s.session.name) +
            ", \"source_folder\": " + jsonString(s.session.source_folder) +
-           format(", \"aligned\": %s, \"keyframes\": %zu, \"optimised_keyframes\": %zu, "
-                  "\"odometry_edges\": %zu, \"loop_edges\": %zu, \"prior_edges\": %zu, "
-                  "\"resources\": %zu, \"resource_bytes\": %llu, \"path_length_m\": %.6f, "
-                  "\"first_timestamp_s\": %.6f, \"last_timestamp_s\": %.6f}",
-                  s.session.aligned ? "true" : "false", s.keyframes, s.optimised_keyframes,
-                  s.odometry_edges, s.loop_edges, s.prior_edges, s.resources,
-                  static_cast<unsigned long long>(s.resource_bytes), s.path_length_m,
-                  s.first_timestamp_s, s.last_timestamp_s);
+           format(
+               ", \"aligned\": %s, \"keyframes\": %zu, \"optimised_keyframes\": %zu, "
+               "\"odometry_edges\": %zu, \"loop_edges\": %zu, \"prior_edges\": %zu, "
+               "\"resources\": %zu, \"resource_bytes\": %llu, \"path_length_m\": %.6f, "
+               "\"first_timestamp_s\": %.6f, \"last_timestamp_s\": %.6f}",
+               s.session.aligned ? "true" : "false", s.keyframes, s.optimised_keyframes,
+               s.odometry_edges, s.loop_edges, s.prior_edges, s.resources,
+               static_cast<unsigned long long>(s.resource_bytes), s.path_length_m,
+               s.first_timestamp_s, s.last_timestamp_s);
   }
   out += sessions.empty() ? "]" : "\n  ]";
   if (verified) {
     out += ",\n  \"resource_problems\": [";
     for (std::size_t i = 0; i < problems.size(); ++i) {
-      out += std::string(i == 0 ? "\n" : ",\n") + "    {\"resource\": " +
-             std::to_string(problems[i].resource.id) + ", \"kind\": \"" +
-             problemName(problems[i].kind) + "\", \"message\": " +
-             jsonString(problems[i].message) + "}";
+      out += std::string(i == 0 ? "\n" : ",\n") +
+             "    {\"resource\": " + std::to_string(problems[i].resource.id) + ", \"kind\": \"" +
+             problemName(problems[i].kind) + "\", \"message\": " + jsonString(problems[i].message) +
+             "}";
     }
     out += problems.empty() ? "]" : "\n  ]";
   }

@@ -29,8 +29,7 @@ std::vector<std::string> exportTrajectories(Store& store, const std::string& out
   for (const auto& s : sessions) ++name_uses[s.name];
   std::vector<std::string> written;
   for (const SessionRecord& s : sessions) {
-    const std::string name =
-        name_uses[s.name] > 1 ? s.name + "_" + std::to_string(s.id) : s.name;
+    const std::string name = name_uses[s.name] > 1 ? s.name + "_" + std::to_string(s.id) : s.name;
     const fs::path dir = fs::path(out_dir) / name;
     fs::create_directories(dir);
     std::string odometry = "# session '" + s.name + "' keyframes: odometry T_S_C (camera-to-" +

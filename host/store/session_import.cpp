@@ -49,8 +49,7 @@ std::vector<Frame> readFrames(const fs::path& folder, const std::vector<tum::Tim
   return frames;
 }
 
-std::vector<std::size_t> selectKeyframes(const std::vector<Frame>& frames,
-                                         const ImportOptions& o) {
+std::vector<std::size_t> selectKeyframes(const std::vector<Frame>& frames, const ImportOptions& o) {
   std::vector<std::size_t> out;
   for (std::size_t i = 0; i < frames.size(); ++i) {
     if (out.empty()) {
@@ -58,8 +57,8 @@ std::vector<std::size_t> selectKeyframes(const std::vector<Frame>& frames,
       continue;
     }
     const std::size_t last = out.back();
-    const bool by_count = o.keyframe_every > 0 &&
-                          i - last >= static_cast<std::size_t>(o.keyframe_every);
+    const bool by_count =
+        o.keyframe_every > 0 && i - last >= static_cast<std::size_t>(o.keyframe_every);
     const bool by_motion =
         o.keyframe_distance_m > 0 &&
         (frames[i].T_S_C.translation() - frames[last].T_S_C.translation()).norm() >=
@@ -97,8 +96,8 @@ ImportResult importTumSession(Store& store, const std::string& folder_text,
     result.session_id = existing->id;
     return result;
   }
-  const fs::path odometry = fs::exists(folder / "odometry.txt") ? folder / "odometry.txt"
-                                                                : folder / "groundtruth.txt";
+  const fs::path odometry =
+      fs::exists(folder / "odometry.txt") ? folder / "odometry.txt" : folder / "groundtruth.txt";
   if (!fs::exists(odometry)) {
     throw InputError("session folder '" + folder_text +
                      "' has neither odometry.txt nor groundtruth.txt");

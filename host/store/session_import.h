@@ -43,8 +43,8 @@ using ImportProgress = std::function<void(std::size_t done, std::size_t total)>;
 /// joined by odometry edges. All of it is one transaction: the session is in the map whole or
 /// not at all. A folder already in the map is skipped (result.skipped). The session is named
 /// after the folder. InputError for a folder without odometry, malformed files or options.
-ImportResult importTumSession(Store& store, const std::string& folder,
-                              const ImportOptions& options, const ImportProgress& progress = {});
+ImportResult importTumSession(Store& store, const std::string& folder, const ImportOptions& options,
+                              const ImportProgress& progress = {});
 
 /// Writes each session's keyframe trajectory as TUM files into `out_dir/<session name>/`
 /// (`<name>_<id>` when two sessions share a name): odometry.txt (timestamp and T_S_C) and, when

@@ -97,12 +97,12 @@ std::int64_t Store::addSession(const std::string& name, const std::string& sourc
     throw InputError("map database '" + path() + "' already holds a session imported from '" +
                      source + "'");
   }
-  const double now_s = std::chrono::duration<double>(
-                           std::chrono::system_clock::now().time_since_epoch())
-                           .count();
+  const double now_s =
+      std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
   Transaction transaction(*db_);
-  Statement insert(*db_, "INSERT INTO sessions (name, source_folder, created_unix_s) "
-                         "VALUES (?, ?, ?)");
+  Statement insert(*db_,
+                   "INSERT INTO sessions (name, source_folder, created_unix_s) "
+                   "VALUES (?, ?, ?)");
   insert.bind(1, name).bind(2, source).bind(3, now_s).run();
   const std::int64_t id = db_->lastInsertId();
   transaction.commit();
@@ -125,9 +125,9 @@ std::vector<SessionRecord> Store::sessions() {
 
 std::vector<std::int64_t> Store::addKeyframes(const std::vector<KeyframeRecord>& keyframes) {
   Transaction transaction(*db_);
-  Statement insert(*db_, "INSERT INTO keyframes (session_id, timestamp_s, " +
-                             poseColumns("T_S_C") + ", " + poseColumns("T_W_C") +
-                             ", covariance) VALUES (" + placeholders(17) + ")");
+  Statement insert(*db_, "INSERT INTO keyframes (session_id, timestamp_s, " + poseColumns("T_S_C") +
+                             ", " + poseColumns("T_W_C") + ", covariance) VALUES (" +
+                             placeholders(17) + ")");
   std::vector<std::int64_t> ids;
   ids.reserve(keyframes.size());
   std::int64_t checked_session = 0;

@@ -17,18 +17,24 @@ static_assert(sizeof(double) == 8 && sizeof(float) == 4, "IEEE-754 sizes");
 
 const char* edgeKindName(EdgeKind kind) {
   switch (kind) {
-    case EdgeKind::kOdometry: return "odometry";
-    case EdgeKind::kLoop: return "loop";
-    case EdgeKind::kPrior: return "prior";
+    case EdgeKind::kOdometry:
+      return "odometry";
+    case EdgeKind::kLoop:
+      return "loop";
+    case EdgeKind::kPrior:
+      return "prior";
   }
   return "?";
 }
 
 const char* resourceKindName(ResourceKind kind) {
   switch (kind) {
-    case ResourceKind::kDepth: return "depth";
-    case ResourceKind::kColor: return "color";
-    case ResourceKind::kTsdfLayer: return "tsdf_layer";
+    case ResourceKind::kDepth:
+      return "depth";
+    case ResourceKind::kColor:
+      return "color";
+    case ResourceKind::kTsdfLayer:
+      return "tsdf_layer";
   }
   return "?";
 }

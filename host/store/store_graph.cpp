@@ -53,8 +53,8 @@ std::vector<std::int64_t> Store::addEdges(const std::vector<EdgeRecord>& edges) 
     const std::string what = "map database '" + path() + "': " + edgeKindName(e.kind) +
                              " edge from keyframe " + std::to_string(e.from_keyframe);
     checkEdgeShape(e, what);
-    for (std::optional<std::int64_t> id : {std::optional<std::int64_t>(e.from_keyframe),
-                                           e.to_keyframe}) {
+    for (std::optional<std::int64_t> id :
+         {std::optional<std::int64_t>(e.from_keyframe), e.to_keyframe}) {
       if (id && !keyframeExists(lookup, *id)) {
         throw InputError(what + ": no keyframe " + std::to_string(*id));
       }
@@ -109,8 +109,9 @@ void Store::setFeatures(std::int64_t keyframe_id, const FeatureSet& features) {
     throw InputError("map database '" + path() + "': setFeatures: no keyframe " +
                      std::to_string(keyframe_id));
   }
-  Statement insert(*db_, "INSERT OR REPLACE INTO features (keyframe_id, format, count, "
-                         "descriptor_bytes, data) VALUES (?, ?, ?, ?, ?)");
+  Statement insert(*db_,
+                   "INSERT OR REPLACE INTO features (keyframe_id, format, count, "
+                   "descriptor_bytes, data) VALUES (?, ?, ?, ?, ?)");
   insert.bind(1, keyframe_id).bind(2, features.format);
   insert.bind(3, static_cast<std::int64_t>(features.keypoints_px.size()));
   insert.bind(4, static_cast<std::int64_t>(features.descriptor_bytes)).bindBlob(5, blob).run();
@@ -118,14 +119,15 @@ void Store::setFeatures(std::int64_t keyframe_id, const FeatureSet& features) {
 }
 
 std::optional<FeatureSet> Store::features(std::int64_t keyframe_id) {
-  Statement s(*db_, "SELECT format, descriptor_bytes, count, data FROM features "
-                    "WHERE keyframe_id = ?");
+  Statement s(*db_,
+              "SELECT format, descriptor_bytes, count, data FROM features "
+              "WHERE keyframe_id = ?");
   s.bind(1, keyframe_id);
   if (!s.step()) return std::nullopt;
-  return featuresFromBlob(s.getText(0), static_cast<std::uint32_t>(s.getInt(1)),
-                          static_cast<std::size_t>(s.getInt(2)), s.getBlob(3),
-                          "map database '" + path() + "': features of keyframe " +
-                              std::to_string(keyframe_id));
+  return featuresFromBlob(
+      s.getText(0), static_cast<std::uint32_t>(s.getInt(1)), static_cast<std::size_t>(s.getInt(2)),
+      s.getBlob(3),
+      "map database '" + path() + "': features of keyframe " + std::to_string(keyframe_id));
 }
 
 }  // namespace strata::store

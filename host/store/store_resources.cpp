@@ -31,8 +31,8 @@ ResourceRecord resourceFrom(const Statement& s, const std::string& db_path) {
   r.id = s.getInt(0);
   r.session_id = s.getInt(1);
   if (!s.isNull(2)) r.keyframe_id = s.getInt(2);
-  r.kind = parseResourceKind(s.getText(3), "map database '" + db_path + "': resource " +
-                                               std::to_string(r.id));
+  r.kind = parseResourceKind(s.getText(3),
+                             "map database '" + db_path + "': resource " + std::to_string(r.id));
   r.relative_path = s.getText(4);
   r.byte_size = static_cast<std::uint64_t>(s.getInt(5));
   r.crc32 = static_cast<std::uint32_t>(s.getInt(6));
@@ -47,9 +47,8 @@ std::string Store::resourcePath(const ResourceRecord& resource) const {
                                 : (fs::path(folder_) / relative).lexically_normal().string();
 }
 
-std::int64_t Store::attachResource(std::int64_t session_id,
-                                   std::optional<std::int64_t> keyframe_id, ResourceKind kind,
-                                   const std::string& file, AttachMode mode) {
+std::int64_t Store::attachResource(std::int64_t session_id, std::optional<std::int64_t> keyframe_id,
+                                   ResourceKind kind, const std::string& file, AttachMode mode) {
   requireSession(session_id, "attachResource");
   const std::vector<std::uint8_t> bytes = readFile(file);
   fs::path placed = fs::absolute(file).lexically_normal();
@@ -68,8 +67,9 @@ std::int64_t Store::attachResource(std::int64_t session_id,
   fs::path relative = fs::relative(placed, folder_, ec);
   if (ec || relative.empty()) relative = placed;  // another root: keep it absolute
   Transaction transaction(*db_);
-  Statement insert(*db_, "INSERT INTO resources (session_id, keyframe_id, kind, relative_path, "
-                         "byte_size, crc32) VALUES (?, ?, ?, ?, ?, ?)");
+  Statement insert(*db_,
+                   "INSERT INTO resources (session_id, keyframe_id, kind, relative_path, "
+                   "byte_size, crc32) VALUES (?, ?, ?, ?, ?, ?)");
   insert.bind(1, session_id).bind(2, keyframe_id).bind(3, std::string(resourceKindName(kind)));
   insert.bind(4, relative.generic_string()).bind(5, static_cast<std::int64_t>(bytes.size()));
   insert.bind(6, static_cast<std::int64_t>(crcOf(bytes)));
@@ -99,10 +99,10 @@ std::vector<std::uint8_t> Store::readResource(std::int64_t resource_id) {
   if (!fs::exists(file)) throw InputError("resource '" + file + "' is missing");
   const std::vector<std::uint8_t> bytes = readFile(file);
   if (bytes.size() != r.byte_size || crcOf(bytes) != r.crc32) {
-    throw InputError("resource '" + file + "' changed since it was attached: " +
-                     std::to_string(bytes.size()) + " bytes, CRC-32 " + hex(crcOf(bytes)) +
-                     ", attached " + std::to_string(r.byte_size) + " bytes, CRC-32 " +
-                     hex(r.crc32));
+    throw InputError("resource '" + file +
+                     "' changed since it was attached: " + std::to_string(bytes.size()) +
+                     " bytes, CRC-32 " + hex(crcOf(bytes)) + ", attached " +
+                     std::to_string(r.byte_size) + " bytes, CRC-32 " + hex(r.crc32));
   }
   return bytes;
 }
@@ -121,9 +121,9 @@ std::vector<ResourceProblem> Store::verifyResources(std::optional<std::int64_t> 
                           "resource '" + file + "' has " + std::to_string(size) +
                               " bytes, attached with " + std::to_string(r.byte_size)});
     } else if (const std::uint32_t crc = crcOf(readFile(file)); crc != r.crc32) {
-      problems.push_back({r, ResourceProblem::Kind::kChecksumChanged,
-                          "resource '" + file + "' has CRC-32 " + hex(crc) +
-                              ", attached with " + hex(r.crc32)});
+      problems.push_back(
+          {r, ResourceProblem::Kind::kChecksumChanged,
+           "resource '" + file + "' has CRC-32 " + hex(crc) + ", attached with " + hex(r.crc32)});
     }
   }
   return problems;
@@ -131,10 +131,12 @@ std::vector<ResourceProblem> Store::verifyResources(std::optional<std::int64_t> 
 
 std::vector<SessionSummary> Store::summary() {
   std::vector<SessionSummary> out;
-  Statement edge_counts(*db_, "SELECT e.kind, COUNT(*) FROM edges e JOIN keyframes k ON "
-                              "e.from_keyframe = k.id WHERE k.session_id = ? GROUP BY e.kind");
-  Statement resource_counts(*db_, "SELECT COUNT(*), COALESCE(SUM(byte_size), 0) FROM resources "
-                                  "WHERE session_id = ?");
+  Statement edge_counts(*db_,
+                        "SELECT e.kind, COUNT(*) FROM edges e JOIN keyframes k ON "
+                        "e.from_keyframe = k.id WHERE k.session_id = ? GROUP BY e.kind");
+  Statement resource_counts(*db_,
+                            "SELECT COUNT(*), COALESCE(SUM(byte_size), 0) FROM resources "
+                            "WHERE session_id = ?");
   for (SessionRecord& session : sessions()) {
     SessionSummary s;
     const std::vector<KeyframeRecord> keyframes = this->keyframes(session.id);
@@ -154,9 +156,15 @@ std::vector<SessionSummary> Store::summary() {
     while (edge_counts.step()) {
       const auto count = static_cast<std::size_t>(edge_counts.getInt(1));
       switch (parseEdgeKind(edge_counts.getText(0), "map database '" + path() + "'")) {
-        case EdgeKind::kOdometry: s.odometry_edges = count; break;
-        case EdgeKind::kLoop: s.loop_edges = count; break;
-        case EdgeKind::kPrior: s.prior_edges = count; break;
+        case EdgeKind::kOdometry:
+          s.odometry_edges = count;
+          break;
+        case EdgeKind::kLoop:
+          s.loop_edges = count;
+          break;
+        case EdgeKind::kPrior:
+          s.prior_edges = count;
+          break;
       }
     }
     edge_counts.reset();
