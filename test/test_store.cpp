@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "store/schema.h"
 #include "store/session_store.h"
@@ -236,7 +237,9 @@ TEST(Store, FutureSchemaVersionIsRefusedNamingBothVersions) {
   const fs::path db = dir / "map.sqlite";
   { Store store(db.string()); }
   execSql(db, "PRAGMA user_version = 7");
+  const std::vector<std::uint8_t> before = readFile(db.string());
   const std::string message = errorOf([&] { Store store(db.string()); });
+  EXPECT_EQ(readFile(db.string()), before);  // refused before any write
   EXPECT_NE(message.find(db.string()), std::string::npos) << message;
   EXPECT_NE(message.find("version 7"), std::string::npos) << message;
   EXPECT_NE(message.find("version 1"), std::string::npos) << message;
@@ -248,7 +251,9 @@ TEST(Store, SqliteFileOfAnotherApplicationIsRefused) {
   const fs::path dir = freshStoreDir("foreign");
   const fs::path db = dir / "other.sqlite";
   execSql(db, "CREATE TABLE contacts (name TEXT)");
+  const std::vector<std::uint8_t> before = readFile(db.string());
   const std::string message = errorOf([&] { Store store(db.string()); });
+  EXPECT_EQ(readFile(db.string()), before);  // still in its own journal mode, untouched
   EXPECT_NE(message.find("not a Strata map"), std::string::npos) << message;
   fs::remove_all(dir);
 }

@@ -92,7 +92,7 @@ std::string fileVersions(const Database& db, std::int64_t version) {
 
 }  // namespace
 
-void migrate(Database& db) {
+void checkSchema(Database& db) {
   const std::int64_t version = db.queryInt("PRAGMA user_version", "read the schema version");
   if (version > kSchemaVersion) {
     throw InputError(fileVersions(db, version) + ", newer than version " +
@@ -110,6 +110,11 @@ void migrate(Database& db) {
                      std::to_string(application_id) + ", " + std::to_string(tables) +
                      " tables), not a Strata map");
   }
+}
+
+void migrate(Database& db) {
+  checkSchema(db);
+  const std::int64_t version = db.queryInt("PRAGMA user_version", "read the schema version");
   const Migration migrations[] = {{0, schemaV1()}};
   for (const Migration& m : migrations) {
     if (m.from_version < version) continue;

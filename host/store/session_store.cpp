@@ -5,8 +5,8 @@
 #include <filesystem>
 
 #include "core/error.h"
+#include "store/internal/store_sql.h"
 #include "store/schema.h"
-#include "store/store_sql.h"
 
 namespace strata::store {
 
@@ -56,8 +56,9 @@ Store::Store(const std::string& path, const StoreOptions& options) {
   }
   folder_ = parent.lexically_normal().string();
   db_ = std::make_unique<Database>(path, options.create);
-  // NOTE: journal_mode is the first statement that reads the file, so a file that is not SQLite
-  // (or whose header is damaged) fails here with SQLITE_NOTADB, before anything is written.
+  // NOTE: checked before the first write (switching to WAL rewrites the header), so a file that
+  // is not SQLite, is newer or belongs to another application is left exactly as it was.
+  checkSchema(*db_);
   db_->exec("PRAGMA journal_mode = WAL", "set the WAL journal");
   db_->exec("PRAGMA synchronous = FULL; PRAGMA foreign_keys = ON", "set durability pragmas");
   quickCheck(*db_);

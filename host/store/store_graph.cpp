@@ -1,7 +1,7 @@
 // Store: pose-graph edges and keyframe features.
 #include "core/error.h"
+#include "store/internal/store_sql.h"
 #include "store/session_store.h"
-#include "store/store_sql.h"
 
 namespace strata::store {
 

@@ -4,8 +4,8 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "store/internal/store_sql.h"
 #include "store/session_store.h"
-#include "store/store_sql.h"
 
 namespace strata::store {
 

@@ -1,4 +1,4 @@
-#include "store/store_sql.h"
+#include "store/internal/store_sql.h"
 
 namespace strata::store::detail {
 
