@@ -12,6 +12,7 @@ PACKAGES=(
   liblcm-dev liblcm-bin libglib2.0-dev iproute2 util-linux
   clang libclang-rt-14-dev llvm
   libceres-dev
+  libsqlite3-dev
 )
 missing=()
 for p in "${PACKAGES[@]}"; do
