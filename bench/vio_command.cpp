@@ -12,6 +12,7 @@
 #include "machine_info.h"
 #include "odometry/synthetic/vio_scenario.h"
 #include "odometry/vio_estimator.h"
+#include "trajectory/trajectory_error.h"
 
 namespace strata::bench {
 namespace {
@@ -32,13 +33,13 @@ double threadCpuMs() {
 struct RunResult {
   std::vector<double> frame_ms, frame_cpu_ms;
   int tracked = 0, failed = 0;
-  double ate_m = 0.0;
+  traj::TrajectoryError error;
 };
 
 RunResult runOnce(const odometry::synthetic::Scenario& s, const odometry::VioConfig& config) {
   odometry::VioEstimator estimator(config, s.rig);
   RunResult r;
-  std::vector<Eigen::Vector3d> estimated, truth;
+  std::vector<traj::StampedPose> estimated, truth;
   std::size_t next_imu = 0;
   for (std::size_t f = 0; f < s.frames.size(); ++f) {
     while (next_imu < s.imu.size() && s.imu[next_imu].t_s <= s.frames[f].t_s + 1e-9) {
@@ -53,12 +54,16 @@ RunResult runOnce(const odometry::synthetic::Scenario& s, const odometry::VioCon
             .count());
     if (e.status == odometry::VioStatus::kTracking) {
       ++r.tracked;
-      estimated.push_back(e.T_W_C.translation());
-      truth.push_back(s.T_W_C_truth[f].translation());
+      estimated.push_back({e.t_s, e.T_W_C});
+      truth.push_back({e.t_s, s.T_W_C_truth[f]});
     }
     r.failed += e.status == odometry::VioStatus::kFailed;
   }
-  r.ate_m = estimated.size() >= 3 ? odometry::synthetic::ateRmseSe3(estimated, truth) : 1e9;
+  if (estimated.size() >= 3) {
+    r.error = traj::evaluateTrajectory(estimated, truth, traj::Alignment::kSE3);
+  } else {
+    r.error.ate_rmse_m = 1e9;
+  }
   return r;
 }
 
@@ -114,7 +119,7 @@ int runVioBench(const VioBenchOptions& o) {
     const double mean_cpu_ms = best_total / static_cast<double>(best.frame_ms.size());
     double mean_ms = 0.0;
     for (double ms : best.frame_ms) mean_ms += ms / static_cast<double>(best.frame_ms.size());
-    const bool ok = best.failed == 0 && best.ate_m < kMaxAteM;
+    const bool ok = best.failed == 0 && best.error.ate_rmse_m < kMaxAteM;
     Json report =
         Json::object()
             .set("benchmark", "vio")
@@ -130,7 +135,12 @@ int runVioBench(const VioBenchOptions& o) {
                                 .set("frames", best.frame_ms.size())
                                 .set("tracked_frames", best.tracked)
                                 .set("failed_frames", best.failed)
-                                .set("ate_rmse_m", best.ate_m)
+                                .set("ate_rmse_m", best.error.ate_rmse_m)
+                                .set("ate_max_m", best.error.ate_max_m)
+                                .set("rotation_rmse_deg", best.error.rotation_rmse_deg)
+                                .set("rpe_trans_percent", best.error.rpe_trans_percent)
+                                .set("rpe_rot_deg_per_m", best.error.rpe_rot_deg_per_m)
+                                .set("path_length_m", best.error.path_length_m)
                                 .set("frame_cpu_ms_mean", mean_cpu_ms)
                                 .set("frame_cpu_ms_p95", percentile(best.frame_cpu_ms, 0.95))
                                 .set("frame_cpu_ms_max", percentile(best.frame_cpu_ms, 1.0))

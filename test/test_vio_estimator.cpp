@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "odometry/vio_estimator.h"
+#include "trajectory/trajectory_error.h"
 #include "odometry/synthetic/vio_scenario.h"
 
 namespace strata::odometry {
@@ -15,7 +16,7 @@ namespace {
 
 struct EstimatorRun {
   std::vector<FrameEstimate> estimates;
-  std::vector<Eigen::Vector3d> estimated, truth;  // tracked frames: left camera positions
+  std::vector<traj::StampedPose> estimated, truth;  // tracked frames: left camera poses
   double worst_up_error_rad = 0.0;                // gravity direction, tracked frames
   double first_up_error_rad = -1.0;               // ... at the first tracked frame
   double seconds = 0.0;                           // wall time in addFrame (printed, not asserted)
@@ -39,8 +40,8 @@ EstimatorRun runEstimator(const synthetic::Scenario& s, std::size_t first, const
     run.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     run.estimates.push_back(e);
     if (e.status == VioStatus::kTracking) {
-      run.estimated.push_back(e.T_W_C.translation());
-      run.truth.push_back(s.T_W_C_truth[f].translation());
+      run.estimated.push_back({e.t_s, e.T_W_C});
+      run.truth.push_back({e.t_s, s.T_W_C_truth[f]});
       const Eigen::Vector3d up_est = e.T_W_B.linear().transpose() * Eigen::Vector3d::UnitZ();
       const Eigen::Vector3d up_true = s.T_W_B_truth[f].linear().transpose() * Eigen::Vector3d::UnitZ();
       if (run.first_up_error_rad < 0.0) {
@@ -56,14 +57,15 @@ EstimatorRun runEstimator(const synthetic::Scenario& s, std::size_t first, const
 // Tracked frames of estimates[begin, end): ATE of the left camera positions.
 double segmentAte(const synthetic::Scenario& s, std::size_t first, const EstimatorRun& run,
                   double t_begin_s, double t_end_s) {
-  std::vector<Eigen::Vector3d> estimated, truth;
+  std::vector<traj::StampedPose> estimated, truth;
   for (std::size_t i = 0; i < run.estimates.size(); ++i) {
     const FrameEstimate& e = run.estimates[i];
     if (e.status != VioStatus::kTracking || e.t_s < t_begin_s || e.t_s >= t_end_s) continue;
-    estimated.push_back(e.T_W_C.translation());
-    truth.push_back(s.T_W_C_truth[first + i].translation());
+    estimated.push_back({e.t_s, e.T_W_C});
+    truth.push_back({e.t_s, s.T_W_C_truth[first + i]});
   }
-  return estimated.size() < 3 ? 1e9 : synthetic::ateRmseSe3(estimated, truth);
+  if (estimated.size() < 3) return 1e9;
+  return traj::evaluateTrajectory(estimated, truth, traj::Alignment::kSE3).ate_rmse_m;
 }
 
 // Iterations bound the solves, not time: the tests give the same figures on a loaded machine.
@@ -91,7 +93,11 @@ TEST(VioEstimator, TracksASimulatedStereoSequenceFromStandstill) {
     tracked += e.status == VioStatus::kTracking;
   }
   EXPECT_GE(tracked, run.estimates.size() - 12);
-  const double ate = synthetic::ateRmseSe3(run.estimated, run.truth);
+  const traj::TrajectoryError error =
+      traj::evaluateTrajectory(run.estimated, run.truth, traj::Alignment::kSE3);
+  const double ate = error.ate_rmse_m;
+  std::printf("RPE %.3f %% %.4f deg/m over %.2f m\n", error.rpe_trans_percent,
+              error.rpe_rot_deg_per_m, error.path_length_m);
   std::printf("standstill start: %zu tracked frames, ATE %.4f m, worst gravity error %.3f deg, "
               "%.1f ms per frame\n", tracked, ate, run.worst_up_error_rad * 180.0 / M_PI,
               1e3 * run.seconds / static_cast<double>(run.estimates.size()));
@@ -115,7 +121,11 @@ TEST(VioEstimator, InitialisesInMotion) {
     tracked += e.status == VioStatus::kTracking;
   }
   EXPECT_GE(tracked, run.estimates.size() - 12);
-  const double ate = synthetic::ateRmseSe3(run.estimated, run.truth);
+  const traj::TrajectoryError error =
+      traj::evaluateTrajectory(run.estimated, run.truth, traj::Alignment::kSE3);
+  const double ate = error.ate_rmse_m;
+  std::printf("RPE %.3f %% %.4f deg/m over %.2f m\n", error.rpe_trans_percent,
+              error.rpe_rot_deg_per_m, error.path_length_m);
   std::printf("in-motion start: %zu tracked frames, ATE %.4f m, worst gravity error %.3f deg, "
               "%.1f ms per frame\n", tracked, ate, run.worst_up_error_rad * 180.0 / M_PI,
               1e3 * run.seconds / static_cast<double>(run.estimates.size()));

@@ -138,20 +138,4 @@ Scenario makeScenario(const ScenarioConfig& c) {
   return s;
 }
 
-double ateRmseSe3(const std::vector<Eigen::Vector3d>& estimate,
-                  const std::vector<Eigen::Vector3d>& truth) {
-  Eigen::Matrix3Xd a(3, estimate.size()), b(3, truth.size());
-  for (std::size_t i = 0; i < estimate.size(); ++i) {
-    a.col(static_cast<Eigen::Index>(i)) = estimate[i];
-    b.col(static_cast<Eigen::Index>(i)) = truth[i];
-  }
-  const Eigen::Matrix4d T = Eigen::umeyama(a, b, false);
-  double sum = 0.0;
-  for (std::size_t i = 0; i < estimate.size(); ++i) {
-    const Eigen::Vector3d e = T.topLeftCorner<3, 3>() * estimate[i] + T.topRightCorner<3, 1>();
-    sum += (e - truth[i]).squaredNorm();
-  }
-  return std::sqrt(sum / static_cast<double>(estimate.size()));
-}
-
 }  // namespace strata::odometry::synthetic

@@ -41,9 +41,4 @@ sim::Trajectory roomTrajectory();
 CameraRig stereoRig();
 Scenario makeScenario(const ScenarioConfig& config);
 
-/// Root-mean-square position error after the best rigid alignment (Umeyama, no scale): the
-/// back end's own check until it moves to the trajectory-error library.
-double ateRmseSe3(const std::vector<Eigen::Vector3d>& estimate,
-                  const std::vector<Eigen::Vector3d>& truth);
-
 }  // namespace strata::odometry::synthetic
