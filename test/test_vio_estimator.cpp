@@ -134,6 +134,30 @@ TEST(VioEstimator, InitialisesInMotion) {
   EXPECT_LT(run.worst_up_error_rad, 2.0 * M_PI / 180.0);
 }
 
+TEST(VioEstimator, TracksWithTheLeftCameraAlone) {
+  synthetic::Scenario s = synthetic::makeScenario(biasedScenario());
+  s.rig.right.reset();
+  for (FrameObservations& frame : s.frames) {
+    for (FeatureObservation& o : frame.features) o.uv_right.reset();
+  }
+  const EstimatorRun run =
+      runEstimator(s, 0, deterministicConfig(), [](std::size_t, FrameObservations*) {});
+  std::size_t tracked = 0, failed = 0;
+  for (const FrameEstimate& e : run.estimates) {
+    tracked += e.status == VioStatus::kTracking;
+    failed += e.status == VioStatus::kFailed;
+    if (e.status == VioStatus::kFailed) std::printf("%.2f s: %s\n", e.t_s, e.reason.c_str());
+  }
+  const traj::TrajectoryError error =
+      traj::evaluateTrajectory(run.estimated, run.truth, traj::Alignment::kSE3);
+  std::printf("monocular: %zu tracked, %zu failed, ATE %.4f m, worst gravity error %.3f deg\n",
+              tracked, failed, error.ate_rmse_m, run.worst_up_error_rad * 180.0 / M_PI);
+  // No stereo scale: the IMU alone makes it metric, an order of magnitude less accurately.
+  EXPECT_EQ(failed, 0u);
+  EXPECT_GE(tracked, run.estimates.size() - 12);
+  EXPECT_LT(error.ate_rmse_m, 0.10);
+}
+
 TEST(VioEstimator, CorruptedObservationsAreReportedAndTrackingRestarts) {
   const synthetic::Scenario s = synthetic::makeScenario(biasedScenario());
   // From 4 s to 5 s the track ids are shuffled: every association is wrong.

@@ -320,8 +320,11 @@ std::string VioEstimator::Impl::healthProblem(const ceres::Solver::Summary& summ
              " above max_median_reprojection_px";
     }
   }
-  frames_without_vision =
-      out->observations_newest < config.min_observations ? frames_without_vision + 1 : 0;
+  // At rest the IMU alone holds the pose (and a monocular rig triangulates nothing).
+  const bool at_rest = classifyMotion(imu, newest.t_s, config.standstill) == ImuMotion::kStill;
+  frames_without_vision = out->observations_newest < config.min_observations && !at_rest
+                              ? frames_without_vision + 1
+                              : 0;
   if (frames_without_vision > config.max_frames_without_vision) {
     return "fewer than min_observations tracked for more than max_frames_without_vision frames";
   }
