@@ -13,10 +13,10 @@ namespace strata::bench {
 struct VioBenchOptions {
   int window_size = 10;
   int max_iterations = 6;
-  int max_features = 100;       // per frame
-  double standstill_s = 1.0;    // 0: start in motion
-  int repeats = 3;              // runs of the whole sequence (timing: the fastest in CPU time)
-  std::string out_path;         // also write the JSON here (atomically)
+  int max_features = 100;     // per frame
+  double standstill_s = 1.0;  // 0: start in motion
+  int repeats = 3;            // runs of the whole sequence (timing: the fastest in CPU time)
+  std::string out_path;       // also write the JSON here (atomically)
 };
 
 CLI::App* addVioCommand(CLI::App& app, VioBenchOptions& options);

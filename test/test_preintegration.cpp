@@ -1,8 +1,7 @@
 // IMU preintegration (Forster et al. TRO 2017), the IMU factor, marginalisation and the
 // initialisers, on the simulator's IMU.
-#include <gtest/gtest.h>
-
 #include <ceres/autodiff_cost_function.h>
+#include <gtest/gtest.h>
 
 #include <random>
 #include <vector>
@@ -13,8 +12,8 @@
 #include "odometry/preintegration.h"
 #include "odometry/reprojection_factor.h"
 #include "odometry/so3.h"
-#include "sim/sensors/imu.h"
 #include "odometry/synthetic/vio_scenario.h"
+#include "sim/sensors/imu.h"
 
 namespace strata::odometry {
 namespace {
@@ -48,7 +47,8 @@ sim::ImuConfig leverArmConfig() {
 TEST(Preintegration, IdealImuMatchesTheTrueRelativeMotion) {
   const sim::Trajectory trajectory = synthetic::roomTrajectory();
   const sim::ImuConfig config = leverArmConfig();
-  const std::vector<ImuMeasurement> samples = toMeasurements(sim::simulateImu(trajectory, config, 1));
+  const std::vector<ImuMeasurement> samples =
+      toMeasurements(sim::simulateImu(trajectory, config, 1));
   const Eigen::Vector3d g(0.0, 0.0, -config.gravity_mps2);
   double worst_rot = 0.0, worst_v = 0.0, worst_p = 0.0;
   for (double t0 = 0.3; t0 + 0.5 < trajectory.duration_s(); t0 += 0.7) {
@@ -139,7 +139,8 @@ TEST(Preintegration, CovarianceMatchesMonteCarlo) {
 TEST(ImuFactor, ZeroAtTruthAndWhitenedByTheCovariance) {
   const sim::Trajectory trajectory = synthetic::roomTrajectory();
   const sim::ImuConfig config = leverArmConfig();
-  const std::vector<ImuMeasurement> samples = toMeasurements(sim::simulateImu(trajectory, config, 1));
+  const std::vector<ImuMeasurement> samples =
+      toMeasurements(sim::simulateImu(trajectory, config, 1));
   auto pre = std::make_shared<Preintegration>(ImuBias{}, ImuNoise{});
   pre->integrateInterval(samples, 4.0, 4.5);
   const BodyState a = bodyState(trajectory, config, 4.0), b = bodyState(trajectory, config, 4.5);
@@ -188,8 +189,8 @@ TEST(ReprojectionCost, AnalyticJacobiansMatchAutoDiff) {
     double rho = 1.0 / (3.0 + n(rng) * 0.3);
     const Eigen::Vector2d uv(300.0 + 10.0 * n(rng), 200.0 + 10.0 * n(rng));
     const bool right = trial % 2 == 1;
-    const ReprojectionCost analytic(bearing, rig.T_B_Cl, right ? rig.T_B_Cr : rig.T_B_Cl,
-                                    rig.left, uv, 0.8);
+    const ReprojectionCost analytic(bearing, rig.T_B_Cl, right ? rig.T_B_Cr : rig.T_B_Cl, rig.left,
+                                    uv, 0.8);
     std::unique_ptr<ceres::CostFunction> reference(ReprojectionFactor::create(
         bearing, rig.T_B_Cl, right ? rig.T_B_Cr : rig.T_B_Cl, rig.left, uv, 0.8));
     const double* params[] = {pose_a, pose_j, &rho};
@@ -246,9 +247,9 @@ TEST(Marginalisation, GivesTheSchurComplementOfALinearSystem) {
   const std::unique_ptr<LinearPrior> prior = marginalise(factors, {x1}, {});
   ASSERT_TRUE(prior);
   ASSERT_EQ(prior->blocks().size(), 1u);
-  const Eigen::Matrix2d Hs = H.bottomRightCorner<2, 2>() -
-                             H.bottomLeftCorner<2, 2>() * H.topLeftCorner<2, 2>().inverse() *
-                                 H.topRightCorner<2, 2>();
+  const Eigen::Matrix2d Hs = H.bottomRightCorner<2, 2>() - H.bottomLeftCorner<2, 2>() *
+                                                               H.topLeftCorner<2, 2>().inverse() *
+                                                               H.topRightCorner<2, 2>();
   const Eigen::MatrixXd J = prior->jacobian();
   EXPECT_LT((J.transpose() * J - Hs).norm(), 1e-9 * Hs.norm());
   // The prior's minimum is where x2 minimises the full problem with x1 eliminated.

@@ -7,9 +7,9 @@
 #include <random>
 #include <vector>
 
+#include "odometry/synthetic/vio_scenario.h"
 #include "odometry/vio_estimator.h"
 #include "trajectory/trajectory_error.h"
-#include "odometry/synthetic/vio_scenario.h"
 
 namespace strata::odometry {
 namespace {
@@ -17,15 +17,15 @@ namespace {
 struct EstimatorRun {
   std::vector<FrameEstimate> estimates;
   std::vector<traj::StampedPose> estimated, truth;  // tracked frames: left camera poses
-  double worst_up_error_rad = 0.0;                // gravity direction, tracked frames
-  double first_up_error_rad = -1.0;               // ... at the first tracked frame
-  double seconds = 0.0;                           // wall time in addFrame (printed, not asserted)
+  double worst_up_error_rad = 0.0;                  // gravity direction, tracked frames
+  double first_up_error_rad = -1.0;                 // ... at the first tracked frame
+  double seconds = 0.0;                             // wall time in addFrame (printed, not asserted)
 };
 
 // Feeds IMU and frames from frame `first` on; `corrupt` may change a frame before it is given.
 template <typename Corrupt>
 EstimatorRun runEstimator(const synthetic::Scenario& s, std::size_t first, const VioConfig& config,
-                 Corrupt corrupt) {
+                          Corrupt corrupt) {
   VioEstimator estimator(config, s.rig);
   EstimatorRun run;
   std::size_t next_imu = 0;
@@ -43,12 +43,13 @@ EstimatorRun runEstimator(const synthetic::Scenario& s, std::size_t first, const
       run.estimated.push_back({e.t_s, e.T_W_C});
       run.truth.push_back({e.t_s, s.T_W_C_truth[f]});
       const Eigen::Vector3d up_est = e.T_W_B.linear().transpose() * Eigen::Vector3d::UnitZ();
-      const Eigen::Vector3d up_true = s.T_W_B_truth[f].linear().transpose() * Eigen::Vector3d::UnitZ();
+      const Eigen::Vector3d up_true =
+          s.T_W_B_truth[f].linear().transpose() * Eigen::Vector3d::UnitZ();
       if (run.first_up_error_rad < 0.0) {
         run.first_up_error_rad = std::acos(std::min(1.0, up_est.dot(up_true)));
       }
-      run.worst_up_error_rad = std::max(run.worst_up_error_rad,
-                                        std::acos(std::min(1.0, up_est.dot(up_true))));
+      run.worst_up_error_rad =
+          std::max(run.worst_up_error_rad, std::acos(std::min(1.0, up_est.dot(up_true))));
     }
   }
   return run;
@@ -84,7 +85,8 @@ synthetic::ScenarioConfig biasedScenario() {
 
 TEST(VioEstimator, TracksASimulatedStereoSequenceFromStandstill) {
   const synthetic::Scenario s = synthetic::makeScenario(biasedScenario());
-  const EstimatorRun run = runEstimator(s, 0, deterministicConfig(), [](std::size_t, FrameObservations*) {});
+  const EstimatorRun run =
+      runEstimator(s, 0, deterministicConfig(), [](std::size_t, FrameObservations*) {});
   // Standstill is detected once half a second of IMU is in; every frame after it tracks.
   ASSERT_GE(run.estimates.size(), 200u);
   std::size_t tracked = 0;
@@ -98,10 +100,11 @@ TEST(VioEstimator, TracksASimulatedStereoSequenceFromStandstill) {
   const double ate = error.ate_rmse_m;
   std::printf("RPE %.3f %% %.4f deg/m over %.2f m\n", error.rpe_trans_percent,
               error.rpe_rot_deg_per_m, error.path_length_m);
-  std::printf("standstill start: %zu tracked frames, ATE %.4f m, gravity error %.3f deg at "
-              "initialisation, worst %.3f deg, %.1f ms per frame\n", tracked, ate,
-              run.first_up_error_rad * 180.0 / M_PI, run.worst_up_error_rad * 180.0 / M_PI,
-              1e3 * run.seconds / static_cast<double>(run.estimates.size()));
+  std::printf(
+      "standstill start: %zu tracked frames, ATE %.4f m, gravity error %.3f deg at "
+      "initialisation, worst %.3f deg, %.1f ms per frame\n",
+      tracked, ate, run.first_up_error_rad * 180.0 / M_PI, run.worst_up_error_rad * 180.0 / M_PI,
+      1e3 * run.seconds / static_cast<double>(run.estimates.size()));
   EXPECT_LT(ate, 0.02);
   // Standstill initialisation: gravity within 1 degree (the accelerometer bias, unobservable at
   // rest, tilts it by ~0.3 degree here), and it stays there.
@@ -115,7 +118,8 @@ TEST(VioEstimator, TracksASimulatedStereoSequenceFromStandstill) {
 TEST(VioEstimator, InitialisesInMotion) {
   const synthetic::Scenario s = synthetic::makeScenario(biasedScenario());
   const std::size_t first = 60;  // 2 s after the standstill: moving
-  const EstimatorRun run = runEstimator(s, first, deterministicConfig(), [](std::size_t, FrameObservations*) {});
+  const EstimatorRun run =
+      runEstimator(s, first, deterministicConfig(), [](std::size_t, FrameObservations*) {});
   std::size_t tracked = 0;
   for (const FrameEstimate& e : run.estimates) {
     EXPECT_NE(e.status, VioStatus::kFailed) << e.t_s << ": " << e.reason;
@@ -127,9 +131,11 @@ TEST(VioEstimator, InitialisesInMotion) {
   const double ate = error.ate_rmse_m;
   std::printf("RPE %.3f %% %.4f deg/m over %.2f m\n", error.rpe_trans_percent,
               error.rpe_rot_deg_per_m, error.path_length_m);
-  std::printf("in-motion start: %zu tracked frames, ATE %.4f m, worst gravity error %.3f deg, "
-              "%.1f ms per frame\n", tracked, ate, run.worst_up_error_rad * 180.0 / M_PI,
-              1e3 * run.seconds / static_cast<double>(run.estimates.size()));
+  std::printf(
+      "in-motion start: %zu tracked frames, ATE %.4f m, worst gravity error %.3f deg, "
+      "%.1f ms per frame\n",
+      tracked, ate, run.worst_up_error_rad * 180.0 / M_PI,
+      1e3 * run.seconds / static_cast<double>(run.estimates.size()));
   EXPECT_LT(ate, 0.03);
   EXPECT_LT(run.worst_up_error_rad, 2.0 * M_PI / 180.0);
 }
@@ -179,7 +185,8 @@ TEST(VioEstimator, CorruptedObservationsAreReportedAndTrackingRestarts) {
       std::printf("failure reported at %.2f s: %s\n", e.t_s, e.reason.c_str());
       EXPECT_FALSE(e.reason.empty());
     }
-    if (failed_at > 0.0 && e.t_s > 5.0 && e.status == VioStatus::kTracking && tracking_again_at < 0) {
+    if (failed_at > 0.0 && e.t_s > 5.0 && e.status == VioStatus::kTracking &&
+        tracking_again_at < 0) {
       tracking_again_at = e.t_s;
     }
   }

@@ -26,8 +26,7 @@ class ImuFactor {
     // A floor far below any real noise keeps the information finite for noise-free configs.
     cov.diagonal().array() += 1e-15;
     // sqrt_information^T sqrt_information = cov^-1 (lower Cholesky of the information).
-    const Eigen::Matrix<double, 15, 15> information =
-        cov.inverse().selfadjointView<Eigen::Upper>();
+    const Eigen::Matrix<double, 15, 15> information = cov.inverse().selfadjointView<Eigen::Upper>();
     sqrt_information_ = Eigen::LLT<Eigen::Matrix<double, 15, 15>>(information).matrixU();
   }
 
@@ -50,10 +49,10 @@ class ImuFactor {
     ceres::AngleAxisToQuaternion(phi.data(), q_corr_wxyz);
     const Quat q_corr(q_corr_wxyz[0], q_corr_wxyz[1], q_corr_wxyz[2], q_corr_wxyz[3]);
     const Quat dq = Quat(Eigen::Quaterniond(pre_->deltaR()).cast<T>()) * q_corr;
-    const Vec3 dv = pre_->deltaV().cast<T>() + pre_->dv_dbg().cast<T>() * dbg +
-                    pre_->dv_dba().cast<T>() * dba;
-    const Vec3 dp = pre_->deltaP().cast<T>() + pre_->dp_dbg().cast<T>() * dbg +
-                    pre_->dp_dba().cast<T>() * dba;
+    const Vec3 dv =
+        pre_->deltaV().cast<T>() + pre_->dv_dbg().cast<T>() * dbg + pre_->dv_dba().cast<T>() * dba;
+    const Vec3 dp =
+        pre_->deltaP().cast<T>() + pre_->dp_dbg().cast<T>() * dbg + pre_->dp_dba().cast<T>() * dba;
 
     const T dt = T(pre_->dt_s());
     const Vec3 g = gravity_W_.cast<T>();

@@ -72,8 +72,8 @@ std::optional<InitialState> initializeFromStandstill(const std::vector<ImuMeasur
 namespace {
 
 // Linear least squares on Log(dR_ij^T R_i^T R_j) = dR/dbg dbg, twice (re-integrating between).
-bool estimateGyroBias(const std::vector<Eigen::Isometry3d>& T_V_B,
-                      std::vector<Preintegration>* pre, Eigen::Vector3d* bias) {
+bool estimateGyroBias(const std::vector<Eigen::Isometry3d>& T_V_B, std::vector<Preintegration>* pre,
+                      Eigen::Vector3d* bias) {
   for (int iteration = 0; iteration < 2; ++iteration) {
     Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
     Eigen::Vector3d b = Eigen::Vector3d::Zero();
@@ -148,8 +148,8 @@ std::optional<AlignmentResult> alignVisualInertial(const std::vector<Eigen::Isom
   for (int iteration = 0; iteration < 4; ++iteration) {
     const Eigen::Vector3d g0 = gravity_mps2 * g.normalized();
     Eigen::Matrix<double, 3, 2> basis;
-    const Eigen::Vector3d axis = std::abs(g0.normalized().x()) < 0.9 ? Eigen::Vector3d::UnitX()
-                                                                     : Eigen::Vector3d::UnitY();
+    const Eigen::Vector3d axis =
+        std::abs(g0.normalized().x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
     basis.col(0) = g0.cross(axis).normalized();
     basis.col(1) = g0.normalized().cross(basis.col(0));
     velocityGravitySystem(T_V_B, *preintegrations, basis, g0, &A, &b);

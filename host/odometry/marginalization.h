@@ -66,8 +66,8 @@ struct LinearisedFactor {
 /// without the curvature term). The pseudo-inverse of the eliminated block drops eigenvalues below
 /// 1e-8 times the largest, so unobservable directions add no information.
 /// Throws Error when a factor fails to evaluate.
-std::unique_ptr<LinearPrior> marginalise(const std::vector<LinearisedFactor>& factors,
-                                         const std::set<double*>& marginalised,
-                                         const std::map<double*, const ceres::Manifold*>& manifolds);
+std::unique_ptr<LinearPrior> marginalise(
+    const std::vector<LinearisedFactor>& factors, const std::set<double*>& marginalised,
+    const std::map<double*, const ceres::Manifold*>& manifolds);
 
 }  // namespace strata::odometry

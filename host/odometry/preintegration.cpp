@@ -56,8 +56,8 @@ void Preintegration::reset() {
 void Preintegration::integrate(const ImuMeasurement& a, const ImuMeasurement& b) {
   const double dt = b.t_s - a.t_s;
   if (!(dt > 0.0) || !std::isfinite(dt)) {
-    throw InputError("Preintegration: IMU samples at t=" + std::to_string(a.t_s) + " and t=" +
-                     std::to_string(b.t_s) + " are not increasing in time");
+    throw InputError("Preintegration: IMU samples at t=" + std::to_string(a.t_s) +
+                     " and t=" + std::to_string(b.t_s) + " are not increasing in time");
   }
   if (!a.gyro_rad_s.allFinite() || !a.accel_mps2.allFinite() || !b.gyro_rad_s.allFinite() ||
       !b.accel_mps2.allFinite()) {
@@ -75,8 +75,8 @@ void Preintegration::step(const ImuMeasurement& a, const ImuMeasurement& b) {
   const Eigen::Matrix3d dR_next = dR_ * dR_step;
   // Mean acceleration over the step in frame i (midpoint), and the same in frame k for the
   // linearised recursions (which are written with dR_k * acc_k).
-  const Eigen::Vector3d acc_i = 0.5 * (dR_ * (a.accel_mps2 - bias_.accel_mps2) +
-                                       dR_next * (b.accel_mps2 - bias_.accel_mps2));
+  const Eigen::Vector3d acc_i =
+      0.5 * (dR_ * (a.accel_mps2 - bias_.accel_mps2) + dR_next * (b.accel_mps2 - bias_.accel_mps2));
   const Eigen::Vector3d acc_k = dR_.transpose() * acc_i;
   const Eigen::Matrix3d acc_skew = skew(acc_k);
   const Eigen::Matrix3d Jr = rightJacobianSO3(omega * dt);
@@ -95,8 +95,7 @@ void Preintegration::step(const ImuMeasurement& a, const ImuMeasurement& b) {
   C.block<3, 3>(6, 0) = 0.5 * dR_ * dt2;
   const double gyro_var = noise_.gyro_noise_density * noise_.gyro_noise_density / dt;
   const double accel_var = noise_.accel_noise_density * noise_.accel_noise_density / dt;
-  cov_ = A * cov_ * A.transpose() + gyro_var * B * B.transpose() +
-         accel_var * C * C.transpose();
+  cov_ = A * cov_ * A.transpose() + gyro_var * B * B.transpose() + accel_var * C * C.transpose();
 
   // Bias Jacobians (appendix, Eq. 69-71); p first, it uses v's and R's old values.
   dp_dba_ += dv_dba_ * dt - 0.5 * dR_ * dt2;
@@ -111,8 +110,8 @@ void Preintegration::step(const ImuMeasurement& a, const ImuMeasurement& b) {
   dt_s_ += dt;
 }
 
-void Preintegration::integrateInterval(const std::vector<ImuMeasurement>& samples,
-                                       double t_begin_s, double t_end_s) {
+void Preintegration::integrateInterval(const std::vector<ImuMeasurement>& samples, double t_begin_s,
+                                       double t_end_s) {
   if (samples.empty() || samples.front().t_s > t_begin_s + 1e-9 ||
       samples.back().t_s < t_end_s - 1e-9 || !(t_end_s > t_begin_s)) {
     throw InputError("Preintegration: IMU samples do not cover [" + std::to_string(t_begin_s) +

@@ -29,14 +29,16 @@ Eigen::Matrix<double, 3, 4> inverseRotateJacobian(const Eigen::Quaterniond& q,
 }  // namespace
 
 ReprojectionCost::ReprojectionCost(const Eigen::Vector3d& bearing_a,
-                                   const Eigen::Isometry3d& T_B_Ca,
-                                   const Eigen::Isometry3d& T_B_Cj,
+                                   const Eigen::Isometry3d& T_B_Ca, const Eigen::Isometry3d& T_B_Cj,
                                    const PinholeIntrinsics& intrinsics_j,
                                    const Eigen::Vector2d& uv_j, double sigma_px)
-    : ray_Ba_(T_B_Ca.linear() * bearing_a), t_B_Ca_(T_B_Ca.translation()),
+    : ray_Ba_(T_B_Ca.linear() * bearing_a),
+      t_B_Ca_(T_B_Ca.translation()),
       R_Cj_B_(T_B_Cj.linear().transpose()),
-      t_Cj_B_(-(T_B_Cj.linear().transpose() * T_B_Cj.translation())), k_(intrinsics_j),
-      uv_(uv_j), sigma_px_(sigma_px) {}
+      t_Cj_B_(-(T_B_Cj.linear().transpose() * T_B_Cj.translation())),
+      k_(intrinsics_j),
+      uv_(uv_j),
+      sigma_px_(sigma_px) {}
 
 bool ReprojectionCost::Evaluate(double const* const* parameters, double* residuals,
                                 double** jacobians) const {
@@ -56,7 +58,7 @@ bool ReprojectionCost::Evaluate(double const* const* parameters, double* residua
   D << k_.fx_px * iz, 0.0, -k_.fx_px * p_C.x() * iz * iz, 0.0, k_.fy_px * iz,
       -k_.fy_px * p_C.y() * iz * iz;
   D /= sigma_px_;
-  const Eigen::Matrix<double, 2, 3> D_B = D * R_Cj_B_;  // d r / d p_Bj
+  const Eigen::Matrix<double, 2, 3> D_B = D * R_Cj_B_;          // d r / d p_Bj
   const Eigen::Matrix<double, 2, 3> M = D_B * R_j.transpose();  // d r / d p_W
   using Row2x7 = Eigen::Matrix<double, 2, 7, Eigen::RowMajor>;
   if (jacobians[0]) {

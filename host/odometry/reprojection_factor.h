@@ -33,8 +33,12 @@ class ReprojectionFactor {
   ReprojectionFactor(const Eigen::Vector3d& bearing_a, const Eigen::Isometry3d& T_B_Ca,
                      const Eigen::Isometry3d& T_B_Cj, const PinholeIntrinsics& intrinsics_j,
                      const Eigen::Vector2d& uv_j, double sigma_px)
-      : bearing_a_(bearing_a), T_B_Ca_(T_B_Ca), T_Cj_B_(T_B_Cj.inverse()), k_(intrinsics_j),
-        uv_(uv_j), sigma_px_(sigma_px) {}
+      : bearing_a_(bearing_a),
+        T_B_Ca_(T_B_Ca),
+        T_Cj_B_(T_B_Cj.inverse()),
+        k_(intrinsics_j),
+        uv_(uv_j),
+        sigma_px_(sigma_px) {}
 
   template <typename T>
   bool operator()(const T* pose_a, const T* pose_j, const T* rho, T* residual) const {

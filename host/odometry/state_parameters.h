@@ -13,7 +13,7 @@ constexpr int kPoseSize = 7;
 constexpr int kPoseTangentSize = 6;
 constexpr int kSpeedBiasSize = 9;
 
-using PoseManifold = ceres::ProductManifold<ceres::EigenQuaternionManifold,
-                                            ceres::EuclideanManifold<3>>;
+using PoseManifold =
+    ceres::ProductManifold<ceres::EigenQuaternionManifold, ceres::EuclideanManifold<3>>;
 
 }  // namespace strata::odometry

@@ -16,9 +16,12 @@ using internal::Keyframe;
 
 const char* toString(VioStatus status) {
   switch (status) {
-    case VioStatus::kInitializing: return "initializing";
-    case VioStatus::kTracking: return "tracking";
-    case VioStatus::kFailed: return "failed";
+    case VioStatus::kInitializing:
+      return "initializing";
+    case VioStatus::kTracking:
+      return "tracking";
+    case VioStatus::kFailed:
+      return "failed";
   }
   return "?";
 }
@@ -40,7 +43,8 @@ void VioConfig::validate() const {
   positive(prior_velocity_mps, "prior_velocity_mps");
   positive(prior_gyro_bias_rad_s, "prior_gyro_bias_rad_s");
   positive(prior_accel_bias_mps2, "prior_accel_bias_mps2");
-  if (!(max_depth_m > min_depth_m)) throw InputError("VioConfig: max_depth_m must exceed min_depth_m");
+  if (!(max_depth_m > min_depth_m))
+    throw InputError("VioConfig: max_depth_m must exceed min_depth_m");
   if (window_size < 2) throw InputError("VioConfig: window_size must be at least 2");
   if (max_iterations < 1) throw InputError("VioConfig: max_iterations must be at least 1");
   if (init_frames < 3) throw InputError("VioConfig: init_frames must be at least 3");
@@ -97,11 +101,12 @@ struct VioEstimator::Impl {
     // Ceres' quaternion increment is half the rotation vector, in the world frame.
     const double gauge = 1e-4;
     sigmas << 0.5 * roll_pitch_rad, 0.5 * roll_pitch_rad, 0.5 * gauge, gauge, gauge, gauge,
-        Eigen::Vector3d::Constant(velocity_mps), Eigen::Vector3d::Constant(config.prior_gyro_bias_rad_s),
+        Eigen::Vector3d::Constant(velocity_mps),
+        Eigen::Vector3d::Constant(config.prior_gyro_bias_rad_s),
         Eigen::Vector3d::Constant(config.prior_accel_bias_mps2);
-    window.prior = makeDiagonalPrior({{k.pose, kPoseSize, window.poseManifold()},
-                                      {k.speed_bias, kSpeedBiasSize, nullptr}},
-                                     sigmas);
+    window.prior = makeDiagonalPrior(
+        {{k.pose, kPoseSize, window.poseManifold()}, {k.speed_bias, kSpeedBiasSize, nullptr}},
+        sigmas);
   }
 
   void reset() {
@@ -296,8 +301,7 @@ std::string VioEstimator::Impl::healthProblem(const ceres::Solver::Summary& summ
     return "gyro bias " + std::to_string(b.gyro_rad_s.norm()) + " rad/s above max_gyro_bias_rad_s";
   }
   if (b.accel_mps2.norm() > config.max_accel_bias_mps2) {
-    return "accel bias " + std::to_string(b.accel_mps2.norm()) +
-           " m/s^2 above max_accel_bias_mps2";
+    return "accel bias " + std::to_string(b.accel_mps2.norm()) + " m/s^2 above max_accel_bias_mps2";
   }
   std::vector<double> errors, errors_newest;
   std::set<std::uint64_t> tracks;
@@ -334,13 +338,14 @@ std::string VioEstimator::Impl::healthProblem(const ceres::Solver::Summary& summ
 void VioEstimator::Impl::trimImu() {
   if (window.keyframes.empty()) {
     const double keep_from = imu.empty() ? 0.0 : imu.back().t_s - 2.0 * config.standstill.window_s;
-    imu.erase(imu.begin(), std::find_if(imu.begin(), imu.end(),
-                                        [&](const ImuMeasurement& m) { return m.t_s >= keep_from; }));
+    imu.erase(imu.begin(), std::find_if(imu.begin(), imu.end(), [&](const ImuMeasurement& m) {
+                return m.t_s >= keep_from;
+              }));
     return;
   }
   const double t0 = window.keyframes.back().t_s;
-  auto first_needed = std::find_if(imu.begin(), imu.end(),
-                                   [&](const ImuMeasurement& m) { return m.t_s > t0; });
+  auto first_needed =
+      std::find_if(imu.begin(), imu.end(), [&](const ImuMeasurement& m) { return m.t_s > t0; });
   if (first_needed != imu.begin()) --first_needed;
   // Keep a standstill window too, for re-initialisation.
   while (first_needed != imu.begin() && first_needed->t_s > t0 - 2.0 * config.standstill.window_s) {

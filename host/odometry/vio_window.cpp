@@ -69,7 +69,8 @@ void Window::triangulate(double min_depth_m, double max_depth_m) {
     std::vector<std::pair<Eigen::Isometry3d, Eigen::Vector3d>> rays;
     for (const Observation& o : l.observations) {
       rays.push_back({T_W_C(o.keyframe_id, false), rig_.left.unproject(o.uv_left)});
-      if (o.uv_right) rays.push_back({T_W_C(o.keyframe_id, true), rig_.right->unproject(*o.uv_right)});
+      if (o.uv_right)
+        rays.push_back({T_W_C(o.keyframe_id, true), rig_.right->unproject(*o.uv_right)});
     }
     if (rays.size() < 2) continue;
     Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
@@ -166,8 +167,7 @@ std::vector<Factor> Window::buildFactors(const SolveSettings& s) const {
   return factors;
 }
 
-ceres::Solver::Summary Window::solve(const std::vector<Factor>& factors,
-                                     const SolveSettings& s) {
+ceres::Solver::Summary Window::solve(const std::vector<Factor>& factors, const SolveSettings& s) {
   ceres::Problem::Options problem_options;
   problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
@@ -187,7 +187,8 @@ ceres::Solver::Summary Window::solve(const std::vector<Factor>& factors,
   for (auto& [track, l] : landmarks) {
     if (problem.HasParameterBlock(&l.rho)) ordering->AddElementToGroup(&l.rho, 0);
   }
-  if (s.visual_only && !keyframes.empty()) problem.SetParameterBlockConstant(keyframes.front().pose);
+  if (s.visual_only && !keyframes.empty())
+    problem.SetParameterBlockConstant(keyframes.front().pose);
   ceres::Solver::Options options;
   options.linear_solver_type = ceres::DENSE_SCHUR;
   options.linear_solver_ordering.reset(ordering);
@@ -216,11 +217,11 @@ void Window::removeOutliers(const std::vector<Factor>& factors, double outlier_p
   for (auto it = landmarks.begin(); it != landmarks.end();) {
     Landmark& l = it->second;
     auto& obs = l.observations;
-    obs.erase(std::remove_if(obs.begin(), obs.end(),
-                             [&](const Observation& o) {
-                               return o.keyframe_id != l.anchor_id &&
-                                      bad.count({it->first, o.keyframe_id});
-                             }),
+    obs.erase(std::remove_if(
+                  obs.begin(), obs.end(),
+                  [&](const Observation& o) {
+                    return o.keyframe_id != l.anchor_id && bad.count({it->first, o.keyframe_id});
+                  }),
               obs.end());
     // A bad anchor observation (or a point that went behind): start the track afresh.
     const bool bad_anchor = bad.count({it->first, l.anchor_id}) > 0;
@@ -240,8 +241,8 @@ void Window::marginaliseOldest(const std::vector<Factor>& factors) {
   }
   std::vector<LinearisedFactor> linearised;
   for (const Factor& f : factors) {
-    const bool touches = std::any_of(f.blocks.begin(), f.blocks.end(),
-                                     [&](double* b) { return drop.count(b) > 0; });
+    const bool touches =
+        std::any_of(f.blocks.begin(), f.blocks.end(), [&](double* b) { return drop.count(b) > 0; });
     if (touches || f.kind == FactorKind::kPrior) linearised.push_back({f.cost, f.loss, f.blocks});
   }
   std::map<double*, const ceres::Manifold*> manifolds;

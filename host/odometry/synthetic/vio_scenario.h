@@ -1,8 +1,8 @@
 #pragma once
-// Synthetic visual-inertial data for the odometry tests and benchmark: a simulated hand-held trajectory
-// (optionally after a standstill), the simulator's IMU model (white noise + bias walk, Kalibr's
-// discrete form) and landmarks on the walls of a room projected into a stereo pair with pixel
-// noise. No images: the observations are what a perfect front end would report.
+// Synthetic visual-inertial data for the odometry tests and benchmark: a simulated hand-held
+// trajectory (optionally after a standstill), the simulator's IMU model (white noise + bias walk,
+// Kalibr's discrete form) and landmarks on the walls of a room projected into a stereo pair with
+// pixel noise. No images: the observations are what a perfect front end would report.
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <vector>
@@ -19,9 +19,9 @@ struct ScenarioConfig {
   double standstill_s = 1.0;  // the body rests this long before the trajectory starts
   double camera_rate_hz = 20.0;
   double pixel_noise_px = 0.5;
-  int max_features = 100;     // per frame, chosen by a fixed per-landmark priority
+  int max_features = 100;  // per frame, chosen by a fixed per-landmark priority
   int landmarks = 1500;
-  sim::ImuConfig imu;         // T_C_B is set from the rig
+  sim::ImuConfig imu;  // T_C_B is set from the rig
   std::uint64_t seed = 5;
 };
 
