@@ -164,6 +164,32 @@ TEST(VioEstimator, TracksWithTheLeftCameraAlone) {
   EXPECT_LT(error.ate_rmse_m, 0.10);
 }
 
+TEST(VioEstimator, ABrokenAccelerometerIsReported) {
+  synthetic::Scenario s = synthetic::makeScenario(biasedScenario());
+  // From 4 s on the accelerometer reads 30 m/s^2 too much along x (a failed sensor).
+  for (ImuMeasurement& m : s.imu) {
+    if (m.t_s >= 4.0) m.accel_mps2.x() += 30.0;
+  }
+  const EstimatorRun run =
+      runEstimator(s, 0, deterministicConfig(), [](std::size_t, FrameObservations*) {});
+  double failed_at = -1.0;
+  std::size_t tracked_after = 0;
+  for (const FrameEstimate& e : run.estimates) {
+    if (e.status == VioStatus::kFailed && failed_at < 0.0) {
+      failed_at = e.t_s;
+      std::printf("failure reported at %.2f s: %s\n", e.t_s, e.reason.c_str());
+    }
+    tracked_after += failed_at > 0.0 && e.status == VioStatus::kTracking;
+  }
+  EXPECT_GE(failed_at, 4.0);
+  EXPECT_LT(failed_at, 4.5);
+  // The sensor stays broken: standstill initialisation sees the features move, in-motion
+  // alignment finds gravity's magnitude more than 10 % off, so no pose is published again.
+  EXPECT_EQ(tracked_after, 0u);
+  const double ate_before = segmentAte(s, 0, run, 0.0, failed_at);
+  EXPECT_LT(ate_before, 0.02);
+}
+
 TEST(VioEstimator, CorruptedObservationsAreReportedAndTrackingRestarts) {
   const synthetic::Scenario s = synthetic::makeScenario(biasedScenario());
   // From 4 s to 5 s the track ids are shuffled: every association is wrong.

@@ -23,6 +23,9 @@ struct StandstillConfig {
   /// times the sensor noise at 200 Hz, far below hand-held motion).
   double max_gyro_stddev_rad_s = 0.02;
   double max_accel_stddev_mps2 = 0.15;
+  /// ... and, where the same tracks are seen window_s apart, their median image motion stays
+  /// below this (slow smooth motion can pass the IMU test; 0.5 px pixel noise moves ~1 px).
+  double max_feature_motion_px = 2.0;
 };
 
 struct InitialState {

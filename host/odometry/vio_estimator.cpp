@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <set>
 #include <string>
+#include <unordered_map>
 
 #include "core/error.h"
 #include "odometry/vio_window.h"
@@ -61,6 +63,7 @@ struct VioEstimator::Impl {
   VioStatus status = VioStatus::kInitializing;
   std::int64_t next_id = 0;
   double last_frame_t_s = -1e300;
+  std::deque<FrameObservations> recent_frames;  // the last standstill.window_s of frames
   int frames_without_vision = 0;
 
   internal::SolveSettings settings(bool visual_only) const {
@@ -116,6 +119,7 @@ struct VioEstimator::Impl {
   }
 
   FrameEstimate initialise(const FrameObservations& frame);
+  bool featuresStill(const FrameObservations& frame) const;
   bool initialiseInMotion();
   FrameEstimate track(const FrameObservations& frame);
   std::string healthProblem(const ceres::Solver::Summary& summary,
@@ -139,7 +143,9 @@ FrameEstimate VioEstimator::Impl::output(double t_s) const {
 }
 
 FrameEstimate VioEstimator::Impl::initialise(const FrameObservations& frame) {
-  if (auto still = initializeFromStandstill(imu, frame.t_s, config.standstill)) {
+  std::optional<InitialState> still = initializeFromStandstill(imu, frame.t_s, config.standstill);
+  if (still && !featuresStill(frame)) still.reset();
+  if (still) {
     window.clear();
     Keyframe& k = pushKeyframe(frame.t_s);
     k.setPose(still->R_W_B, still->p_W_B);
@@ -335,6 +341,25 @@ std::string VioEstimator::Impl::healthProblem(const ceres::Solver::Summary& summ
   return "";
 }
 
+bool VioEstimator::Impl::featuresStill(const FrameObservations& frame) const {
+  // The oldest kept frame, about window_s ago, against this one.
+  if (recent_frames.empty() ||
+      recent_frames.front().t_s > frame.t_s - 0.9 * config.standstill.window_s) {
+    return false;
+  }
+  std::unordered_map<std::uint64_t, Eigen::Vector2d> before;
+  for (const FeatureObservation& o : recent_frames.front().features) before[o.track_id] = o.uv_left;
+  std::vector<double> motion_px;
+  for (const FeatureObservation& o : frame.features) {
+    const auto it = before.find(o.track_id);
+    if (it != before.end()) motion_px.push_back((o.uv_left - it->second).norm());
+  }
+  // Too few common tracks to tell: the IMU's verdict stands.
+  if (static_cast<int>(motion_px.size()) < config.min_observations) return true;
+  std::nth_element(motion_px.begin(), motion_px.begin() + motion_px.size() / 2, motion_px.end());
+  return motion_px[motion_px.size() / 2] < config.standstill.max_feature_motion_px;
+}
+
 void VioEstimator::Impl::trimImu() {
   if (window.keyframes.empty()) {
     const double keep_from = imu.empty() ? 0.0 : imu.back().t_s - 2.0 * config.standstill.window_s;
@@ -384,6 +409,11 @@ FrameEstimate VioEstimator::addFrame(const FrameObservations& frame) {
   }
   m.last_frame_t_s = frame.t_s;
   FrameEstimate e = m.status == VioStatus::kTracking ? m.track(frame) : m.initialise(frame);
+  m.recent_frames.push_back(frame);
+  while (m.recent_frames.size() > 1 &&
+         m.recent_frames[1].t_s <= frame.t_s - m.config.standstill.window_s + 1e-9) {
+    m.recent_frames.pop_front();
+  }
   m.trimImu();
   return e;
 }
