@@ -4,6 +4,7 @@
 // the same stamp), at the recording's rate times --rate, or as fast as possible with --rate 0 (no
 // mapper is involved: there is no flow control). --first/--frames/--stride pick frames; the IMU
 // samples sent are those from the first picked frame to the last (all when every frame is sent).
+// runPlay takes this path for a folder with mav0/ and no TUM depth.txt, or for a mav0/ folder.
 // Thread safety: not thread safe (one LCM publisher).
 #include <cstddef>
 #include <lcm/lcm-cpp.hpp>

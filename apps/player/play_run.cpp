@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <thread>
 
 #include "io/euroc_dataset.h"
@@ -171,7 +172,10 @@ int runPlay(const PlayOptions& options) {
     options.validate();
     lcm::LCM lcm(options.url);
     if (!lcm.good()) throw InputError("LCM URL '" + options.url + "' could not be opened");
-    if (euroc::isEurocFolder(options.dataset)) {
+    // NOTE: `strata sim --stereo` sessions hold both layouts: the folder plays as TUM RGB-D (for
+    // the mapper), its mav0/ as grey stereo + IMU.
+    if (euroc::isEurocFolder(options.dataset) &&
+        !std::filesystem::exists(std::filesystem::path(options.dataset) / "depth.txt")) {
       const EurocPlaySummary s = playEuroc(options, lcm);
       std::printf("strata-play: sent %zu grey frames on %s and %zu IMU samples on %s of '%s' "
                   "(%.1f MB) in %.2f s.\n",
