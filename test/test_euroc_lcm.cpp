@@ -2,10 +2,14 @@
 // playback on memq:// decodes back to the very images and IMU samples the reader gives.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <filesystem>
 #include <lcm/lcm-cpp.hpp>
 
 #include "core/error.h"
 #include "io/euroc_dataset.h"
+#include "io/euroc_writer.h"
 #include "lcm/channels.h"
 #include "lcm/convert_frame.h"
 #include "lcm/convert_stereo.h"
@@ -171,6 +175,43 @@ TEST(LcmStereo, EurocPlaybackPicksFramesAndTheImuBetweenThem) {
   EXPECT_EQ(r.order.front().second, false);  // the sample at the first frame's time comes first
   EXPECT_EQ(r.order.back().second, true);
   EXPECT_NEAR(static_cast<double>(r.frames.back().utime - r.frames.front().utime), 400000.0, 2.0);
+}
+
+TEST(LcmStereo, MonoSessionPlaysWithoutRightImages) {
+  namespace fs = std::filesystem;
+  const fs::path dir =
+      fs::temp_directory_path() / ("strata_test_euroc_mono_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  euroc::Calibration calibration;
+  euroc::CameraCalibration cam;
+  cam.name = "cam0";
+  cam.width_px = 12;
+  cam.height_px = 10;
+  cam.fu_px = cam.fv_px = 10.0;
+  cam.cu_px = 5.5;
+  cam.cv_px = 4.5;
+  cam.rate_hz = 20.0;
+  calibration.cameras.push_back(cam);
+  calibration.imu.rate_hz = 200.0;
+  euroc::EurocWriter writer(dir.string(), calibration);
+  std::vector<euroc::ImuSample> imu;
+  for (int k = 0; k < 3; ++k) writer.addFrame(k * 50'000'000, ramp(12, 10, k));
+  for (int k = 0; k <= 20; ++k) imu.push_back({k * 5'000'000, {0, 0, 0.1 * k}, {0, 0, 9.8}});
+  writer.finish(imu, {});
+  apps::PlayOptions options;
+  options.dataset = (dir / "mav0").string();
+  options.rate = 0.0;
+  options.restamp = false;
+  options.quiet = true;
+  const Received r = play(options);
+  fs::remove_all(dir);
+  ASSERT_EQ(r.frames.size(), 3u);
+  ASSERT_EQ(r.imu.size(), 21u);
+  EXPECT_TRUE(r.frames[2].right.empty());
+  EXPECT_EQ(r.frames[2].right_camera, "");
+  EXPECT_EQ(r.frames[2].left.pixels, ramp(12, 10, 2).pixels);
+  EXPECT_EQ(r.frames[2].utime, 100'000);
+  EXPECT_EQ(r.imu[20].gyro_rad_s.z(), 0.1 * 20);
 }
 
 }  // namespace
