@@ -78,6 +78,27 @@ TEST(EurocMicro, ReadsCalibrationFramesImuAndTruth) {
   EXPECT_EQ(images.left.pixels.size(), 752u * 480u);
 }
 
+TEST(EurocMicro, GroundTruthInterpolatesAtFrameTimes) {
+  STRATA_REQUIRE_DATA("euroc_v101_micro", folder);
+  const EurocDataset d = EurocDataset::open(folder);
+  const std::vector<GroundTruthState>& gt = d.groundTruth();
+  // The excerpt's TUM truth is at 20 Hz with stamps rounded to 10 us: frames fall between states.
+  std::size_t found = 0;
+  for (const StereoFrame& f : d.frames()) found += interpolateGroundTruth(gt, f.timestamp_ns).has_value();
+  EXPECT_GE(found, d.frames().size() - 1);
+  EXPECT_FALSE(interpolateGroundTruth(gt, gt.front().timestamp_ns - 1).has_value());
+  EXPECT_FALSE(interpolateGroundTruth(gt, gt.back().timestamp_ns + 1).has_value());
+  ASSERT_TRUE(interpolateGroundTruth(gt, gt[3].timestamp_ns).has_value());
+  EXPECT_TRUE(interpolateGroundTruth(gt, gt[3].timestamp_ns)->isApprox(gt[3].T_W_B));
+  const std::int64_t mid = (gt[3].timestamp_ns + gt[4].timestamp_ns) / 2;
+  const std::optional<Eigen::Isometry3d> between = interpolateGroundTruth(gt, mid);
+  ASSERT_TRUE(between.has_value());
+  const Eigen::Isometry3d& T = *between;
+  EXPECT_NEAR((T.translation() - 0.5 * (gt[3].T_W_B.translation() + gt[4].T_W_B.translation())).norm(),
+              0.0, 1e-6);
+  EXPECT_FALSE(interpolateGroundTruth(gt, mid, 1000).has_value());  // 50 ms apart: over 1 us
+}
+
 TEST(EurocMicro, EventsAreTimeOrderedImuFirstAtTies) {
   STRATA_REQUIRE_DATA("euroc_v101_micro", folder);
   const EurocDataset d = EurocDataset::open(folder);

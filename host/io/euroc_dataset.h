@@ -26,7 +26,9 @@
 //
 // Thread safety: an opened dataset is immutable; every const method may be called from several
 // threads at once.
+#include <Eigen/Geometry>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -92,6 +94,13 @@ class EurocDataset {
 
 /// Whether `folder` looks like an EuRoC session (has mav0/cam0 or is mav0 with cam0/); no checks.
 bool isEurocFolder(const std::string& folder);
+
+/// Body pose at `timestamp_ns` from time-ordered ground truth: translation interpolated linearly,
+/// rotation by slerp between the two states around it. nullopt outside the truth's span or when
+/// those two states are more than `max_gap_ns` apart (a hole in the truth).
+std::optional<Eigen::Isometry3d> interpolateGroundTruth(const std::vector<GroundTruthState>& truth,
+                                                        std::int64_t timestamp_ns,
+                                                        std::int64_t max_gap_ns = 100'000'000);
 
 /// Reads and checks one grey image against a camera's resolution (loadImages does this per eye).
 GreyImage loadGreyImage(const std::string& path, const CameraCalibration& camera);
