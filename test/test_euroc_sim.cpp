@@ -97,6 +97,14 @@ TEST_F(EurocSim, TruthIsTheRgbdTrajectoryThroughTheMounting) {
     worst_m = std::max(worst_m, ((s.T_W_B * T_B_C0).matrix() - T_W_C.matrix()).norm());
   }
   EXPECT_LT(worst_m, 1e-9);
+  // groundtruth_body.txt holds the same body poses in TUM format.
+  const std::vector<tum::TimedPose> body =
+      tum::readTrajectory((session() / "groundtruth_body.txt").string());
+  ASSERT_EQ(body.size(), d.groundTruth().size());
+  for (std::size_t i = 0; i < body.size(); i += 10) {
+    EXPECT_NEAR(body[i].timestamp_s, d.groundTruth()[i].timestamp_ns * 1e-9, 1e-9);
+    EXPECT_LT((body[i].T_W_C.matrix() - d.groundTruth()[i].T_W_B.matrix()).norm(), 1e-7);
+  }
   // The TUM RGB-D groundtruth.txt is cam0's trajectory: its first pose is at t = 0.
   const std::vector<tum::TimedPose> tum = tum::readTrajectory((session() / "groundtruth.txt").string());
   ASSERT_FALSE(tum.empty());

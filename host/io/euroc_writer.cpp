@@ -6,6 +6,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "io/image_io.h"
+#include "io/tum_format.h"
 
 namespace strata::euroc {
 namespace {
@@ -110,6 +111,18 @@ void writeGroundTruthCsv(const std::string& path, const std::vector<GroundTruthS
         s.velocity_W.x(), s.velocity_W.y(), s.velocity_W.z(), s.gyro_bias.x(), s.gyro_bias.y(),
         s.gyro_bias.z(), s.accel_bias.x(), s.accel_bias.y(), s.accel_bias.z());
     text.append(line, static_cast<std::size_t>(n));
+  }
+  writeText(path, text);
+}
+
+void writeGroundTruthTum(const std::string& path, const std::vector<GroundTruthState>& states) {
+  std::string text = "# body (= IMU) pose in the world, TUM format: timestamp[s] tx ty tz qx qy qz qw\n";
+  char stamp[48];
+  for (const GroundTruthState& s : states) {
+    std::snprintf(stamp, sizeof(stamp), "%lld.%09lld ",
+                  static_cast<long long>(s.timestamp_ns / 1'000'000'000),
+                  static_cast<long long>(s.timestamp_ns % 1'000'000'000));
+    text += stamp + tum::poseToTum(s.T_W_B) + "\n";
   }
   writeText(path, text);
 }

@@ -22,6 +22,10 @@ void writeImuCsv(const std::string& path, const std::vector<ImuSample>& samples)
 /// false).
 void writeGroundTruthCsv(const std::string& path, const std::vector<GroundTruthState>& states);
 
+/// The same poses as a TUM trajectory (`t_s tx ty tz qx qy qz qw`, body-to-world, ns as seconds
+/// with 9 decimals), e.g. <session>/groundtruth_body.txt for TUM-format evaluation tools.
+void writeGroundTruthTum(const std::string& path, const std::vector<GroundTruthState>& states);
+
 class EurocWriter {
  public:
   /// Creates <session>/mav0/cam0 (+ cam1 when calibration is stereo) and imu0, and writes their

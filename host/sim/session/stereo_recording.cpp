@@ -1,6 +1,7 @@
 #include "sim/session/stereo_recording.h"
 
 #include <cmath>
+#include <filesystem>
 
 #include "core/error.h"
 #include "io/euroc_writer.h"
@@ -150,6 +151,8 @@ StereoRecordingSummary writeStereoRecording(const SimSessionDataset& session,
     truth.push_back(bodyState(session.trajectory().state(s.t_s), s, config.imu.T_C_B));
   }
   writer.finish(imu, truth);
+  euroc::writeGroundTruthTum((std::filesystem::path(folder) / "groundtruth_body.txt").string(),
+                             truth);
   StereoRecordingSummary summary;
   summary.frames = times.size();
   summary.imu_samples = imu.size();

@@ -59,7 +59,8 @@ struct StereoRecordingSummary {
   double duration_s = 0.0;
 };
 
-/// Renders and writes <folder>/mav0/{cam0, cam1, imu0, state_groundtruth_estimate0}. Same seed
+/// Renders and writes <folder>/mav0/{cam0, cam1, imu0, state_groundtruth_estimate0} and the body
+/// truth again as a TUM trajectory, <folder>/groundtruth_body.txt (for TUM tools). Same seed
 /// (the session's), same bytes. `on_frame` (optional) is called after each written frame.
 /// Throws InputError for a bad config, Error when a file cannot be written.
 StereoRecordingSummary writeStereoRecording(const SimSessionDataset& session,
