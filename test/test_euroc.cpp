@@ -52,7 +52,8 @@ TEST(EurocMicro, ReadsCalibrationFramesImuAndTruth) {
   EXPECT_EQ(d.stats().unpaired_left, 0u);
   EXPECT_EQ(d.frames().front().timestamp_ns, 1403715273262142976);
   for (std::size_t i = 1; i < d.frames().size(); ++i) {
-    EXPECT_NEAR(d.frames()[i].timestamp_ns - d.frames()[i - 1].timestamp_ns, 50e6, 1000);  // 128 ns jitter
+    EXPECT_NEAR(d.frames()[i].timestamp_ns - d.frames()[i - 1].timestamp_ns, 50e6,
+                1000);  // 128 ns jitter
   }
 
   EXPECT_DOUBLE_EQ(d.calibration().imu.rate_hz, 200.0);
@@ -84,7 +85,8 @@ TEST(EurocMicro, GroundTruthInterpolatesAtFrameTimes) {
   const std::vector<GroundTruthState>& gt = d.groundTruth();
   // The excerpt's TUM truth is at 20 Hz with stamps rounded to 10 us: frames fall between states.
   std::size_t found = 0;
-  for (const StereoFrame& f : d.frames()) found += interpolateGroundTruth(gt, f.timestamp_ns).has_value();
+  for (const StereoFrame& f : d.frames())
+    found += interpolateGroundTruth(gt, f.timestamp_ns).has_value();
   EXPECT_GE(found, d.frames().size() - 1);
   EXPECT_FALSE(interpolateGroundTruth(gt, gt.front().timestamp_ns - 1).has_value());
   EXPECT_FALSE(interpolateGroundTruth(gt, gt.back().timestamp_ns + 1).has_value());
@@ -94,8 +96,9 @@ TEST(EurocMicro, GroundTruthInterpolatesAtFrameTimes) {
   const std::optional<Eigen::Isometry3d> between = interpolateGroundTruth(gt, mid);
   ASSERT_TRUE(between.has_value());
   const Eigen::Isometry3d& T = *between;
-  EXPECT_NEAR((T.translation() - 0.5 * (gt[3].T_W_B.translation() + gt[4].T_W_B.translation())).norm(),
-              0.0, 1e-6);
+  EXPECT_NEAR(
+      (T.translation() - 0.5 * (gt[3].T_W_B.translation() + gt[4].T_W_B.translation())).norm(), 0.0,
+      1e-6);
   EXPECT_FALSE(interpolateGroundTruth(gt, mid, 1000).has_value());  // 50 ms apart: over 1 us
 }
 
@@ -167,7 +170,8 @@ class EurocBadInput : public testing::Test {
     // 5 frames at 20 Hz, IMU at 200 Hz over the same 0.2 s.
     EurocWriter writer(dir_.string(), smallCalibration(true));
     for (int k = 0; k < 5; ++k) {
-      writer.addFrame(1'000'000'000 + k * 50'000'000, GreyImage(16, 12, 100), GreyImage(16, 12, 90));
+      writer.addFrame(1'000'000'000 + k * 50'000'000, GreyImage(16, 12, 100),
+                      GreyImage(16, 12, 90));
     }
     std::vector<ImuSample> imu;
     for (int k = 0; k <= 40; ++k) {
@@ -192,7 +196,8 @@ class EurocBadInput : public testing::Test {
       EurocDataset::open(dir_.string());
       FAIL() << "no error; expected one naming " << parts.front();
     } catch (const InputError& e) {
-      for (const std::string& part : parts) EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+      for (const std::string& part : parts)
+        EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
     }
   }
   fs::path dir_;
@@ -225,7 +230,8 @@ TEST_F(EurocBadInput, MissingImagesAreCountedAndDropped) {
   EXPECT_EQ(d.stats().unpaired_left, 1u);
   EXPECT_NE(d.stats().first_missing_image.find("cam1/data/1050000000.png"), std::string::npos);
   for (int k = 0; k < 5; ++k) {
-    fs::remove(mav0() / "cam1" / "data" / (std::to_string(1'000'000'000 + k * 50'000'000) + ".png"));
+    fs::remove(mav0() / "cam1" / "data" /
+               (std::to_string(1'000'000'000 + k * 50'000'000) + ".png"));
   }
   expectError({"cam1/data.csv", "none of its 5 images"});
 }
@@ -263,7 +269,8 @@ TEST_F(EurocBadInput, TimeGoingBackOrRepeatingNamesTheLine) {
 
 TEST_F(EurocBadInput, NonFiniteImuIsSkippedAndGapsCounted) {
   replaceInFile(mav0() / "imu0" / "data.csv", "1010000000,0,0,0.5", "1010000000,nan,0,0.5");
-  replaceInFile(mav0() / "imu0" / "data.csv", "1050000000,0,0,0.5,0,0,9.75", "1050000000,0,0,0.5,0,inf,9.75");
+  replaceInFile(mav0() / "imu0" / "data.csv", "1050000000,0,0,0.5,0,0,9.75",
+                "1050000000,0,0,0.5,0,inf,9.75");
   // Remove two consecutive rows: one gap of 3 periods (2 samples missing).
   replaceInFile(mav0() / "imu0" / "data.csv", "1100000000,0,0,0.5,0,0,9.75\n", "");
   replaceInFile(mav0() / "imu0" / "data.csv", "1105000000,0,0,0.5,0,0,9.75\n", "");
@@ -273,7 +280,8 @@ TEST_F(EurocBadInput, NonFiniteImuIsSkippedAndGapsCounted) {
   EXPECT_EQ(d.imu().size(), 37u);
   EXPECT_EQ(d.stats().imu_gaps, 3u);             // the two skipped rows and the removed pair
   EXPECT_EQ(d.stats().imu_missing_samples, 4u);  // 1 + 1 + 2
-  for (const ImuSample& s : d.imu()) EXPECT_TRUE(s.gyro_rad_s.allFinite() && s.accel_mps2.allFinite());
+  for (const ImuSample& s : d.imu())
+    EXPECT_TRUE(s.gyro_rad_s.allFinite() && s.accel_mps2.allFinite());
 }
 
 TEST_F(EurocBadInput, UnmatchedStereoTimestampsAreCounted) {

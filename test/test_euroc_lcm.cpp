@@ -1,7 +1,6 @@
 // Grey stereo over LCM: the stereo_image_t codec refuses corrupt messages; strata-play's EuRoC
 // playback on memq:// decodes back to the very images and IMU samples the reader gives.
 #include <gtest/gtest.h>
-
 #include <unistd.h>
 
 #include <filesystem>
@@ -38,7 +37,8 @@ void expectRefused(const stereo_image_t& message, const std::string& part) {
 }
 
 TEST(LcmStereo, RoundTripThroughBytesAndMono) {
-  const stereo_image_t message = encodeStereo(ramp(8, 6, 0), ramp(8, 6, 3), 1234, 5, "cam0", "cam1");
+  const stereo_image_t message =
+      encodeStereo(ramp(8, 6, 0), ramp(8, 6, 3), 1234, 5, "cam0", "cam1");
   std::vector<std::uint8_t> bytes(static_cast<std::size_t>(message.getEncodedSize()));
   ASSERT_EQ(message.encode(bytes.data(), 0, static_cast<int>(bytes.size())),
             static_cast<int>(bytes.size()));
@@ -171,7 +171,7 @@ TEST(LcmStereo, EurocPlaybackPicksFramesAndTheImuBetweenThem) {
   options.stride = 2;  // frames 10, 12, ..., 18: 0.4 s
   const Received r = play(options);
   ASSERT_EQ(r.frames.size(), 5u);
-  EXPECT_EQ(r.imu.size(), 81u);  // 0.4 s at 200 Hz, both ends
+  EXPECT_EQ(r.imu.size(), 81u);              // 0.4 s at 200 Hz, both ends
   EXPECT_EQ(r.order.front().second, false);  // the sample at the first frame's time comes first
   EXPECT_EQ(r.order.back().second, true);
   EXPECT_NEAR(static_cast<double>(r.frames.back().utime - r.frames.front().utime), 400000.0, 2.0);

@@ -106,7 +106,8 @@ TEST_F(EurocSim, TruthIsTheRgbdTrajectoryThroughTheMounting) {
     EXPECT_LT((body[i].T_W_C.matrix() - d.groundTruth()[i].T_W_B.matrix()).norm(), 1e-7);
   }
   // The TUM RGB-D groundtruth.txt is cam0's trajectory: its first pose is at t = 0.
-  const std::vector<tum::TimedPose> tum = tum::readTrajectory((session() / "groundtruth.txt").string());
+  const std::vector<tum::TimedPose> tum =
+      tum::readTrajectory((session() / "groundtruth.txt").string());
   ASSERT_FALSE(tum.empty());
   EXPECT_NEAR(tum.front().timestamp_s, 0.0, 1e-9);
   EXPECT_LT(((d.groundTruth().front().T_W_B * T_B_C0).matrix() - tum.front().T_W_C.matrix()).norm(),
@@ -140,9 +141,8 @@ TEST_F(EurocSim, ImuIntegratesToTheTruth) {
   }
   EXPECT_GT(travelled_m, 0.1);  // it moved (about 0.19 m): the check is not trivial
   EXPECT_LT((p - gt[last].T_W_B.translation()).norm(), 0.005);  // measured 0.8 mm
-  EXPECT_LT((v - gt[last].velocity_W).norm(), 0.015);  // measured 3 mm/s
-  const double angle_rad =
-      Eigen::AngleAxisd(R.transpose() * gt[last].T_W_B.linear()).angle();
+  EXPECT_LT((v - gt[last].velocity_W).norm(), 0.015);           // measured 3 mm/s
+  const double angle_rad = Eigen::AngleAxisd(R.transpose() * gt[last].T_W_B.linear()).angle();
   EXPECT_LT(angle_rad, 0.005);
 }
 
@@ -173,9 +173,8 @@ TEST(EurocGreyExposure, GainAndOffsetPerFrameSeeded) {
     gains_differ += std::abs(f.exposure_gain - 1.0) > 1e-3;
     for (std::size_t eye = 0; eye < 2; ++eye) {
       for (std::size_t i = 0; i < f.eyes[eye].pixels.size(); i += 37) {
-        const double expected =
-            std::clamp(f.exposure_gain * reference.eyes[eye].pixels[i] + f.exposure_offset, 0.0,
-                       255.0);
+        const double expected = std::clamp(
+            f.exposure_gain * reference.eyes[eye].pixels[i] + f.exposure_offset, 0.0, 255.0);
         EXPECT_NEAR(f.eyes[eye].pixels[i], expected, 0.5 * f.exposure_gain + 0.51);
       }
     }

@@ -38,9 +38,9 @@ std::vector<euroc::Event> pickEvents(const euroc::EurocDataset& d, const PlayOpt
   const std::int64_t t_last = d.frames()[last_index].timestamp_ns;
   std::vector<euroc::Event> events;
   for (const euroc::Event& e : d.events()) {
-    if (e.kind == euroc::Event::Kind::kFrame ? picked[e.index]
-                                             : all || (e.timestamp_ns >= t_first &&
-                                                       e.timestamp_ns <= t_last)) {
+    if (e.kind == euroc::Event::Kind::kFrame
+            ? picked[e.index]
+            : all || (e.timestamp_ns >= t_first && e.timestamp_ns <= t_last)) {
       events.push_back(e);
     }
   }
@@ -64,9 +64,9 @@ EurocPlaySummary playEuroc(const PlayOptions& o, lcm::LCM& lcm) {
   for (const euroc::Event& e : events) {
     const std::int64_t offset_ns = e.timestamp_ns - t0_ns;
     if (o.rate > 0.0) {
-      std::this_thread::sleep_until(
-          start + std::chrono::duration_cast<Clock::duration>(
-                      std::chrono::duration<double>(offset_ns * 1e-9 / o.rate)));
+      std::this_thread::sleep_until(start +
+                                    std::chrono::duration_cast<Clock::duration>(
+                                        std::chrono::duration<double>(offset_ns * 1e-9 / o.rate)));
     }
     const std::int64_t utime = o.restamp ? base_utime + offset_ns / 1000 : e.timestamp_ns / 1000;
     if (e.kind == euroc::Event::Kind::kImu) {

@@ -16,7 +16,8 @@ struct Row {
 
 std::string_view trim(std::string_view s) {
   while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
+    s.remove_suffix(1);
   return s;
 }
 
@@ -161,8 +162,8 @@ std::vector<GroundTruthState> parseGroundTruthCsv(const std::string& text,
         throw InputError(where(name, row) + "column " + std::to_string(i + 1) + " is not finite");
       }
     }
-    state.T_W_B = poseFrom({v[0], v[1], v[2]}, Eigen::Quaterniond(v[3], v[4], v[5], v[6]),
-                           where(name, row));
+    state.T_W_B =
+        poseFrom({v[0], v[1], v[2]}, Eigen::Quaterniond(v[3], v[4], v[5], v[6]), where(name, row));
     if (row.fields.size() == 17) {
       state.has_velocity_and_biases = true;
       state.velocity_W = {v[7], v[8], v[9]};
@@ -193,8 +194,8 @@ std::vector<GroundTruthState> parseGroundTruthTum(const std::string& text,
     GroundTruthState state;
     state.timestamp_ns = std::llround(v[0] * 1e9);
     checkOrder(name, row, state.timestamp_ns, &previous);
-    state.T_W_B = poseFrom({v[1], v[2], v[3]}, Eigen::Quaterniond(v[7], v[4], v[5], v[6]),
-                           where(name, row));
+    state.T_W_B =
+        poseFrom({v[1], v[2], v[3]}, Eigen::Quaterniond(v[7], v[4], v[5], v[6]), where(name, row));
     states.push_back(state);
   }
   return states;

@@ -38,8 +38,8 @@ CameraFiles readCamera(const fs::path& dir, const std::string& name, ReaderStats
   requireFolder(dir, "camera");
   CameraFiles camera;
   const fs::path yaml = dir / "sensor.yaml";
-  camera.calibration = parseCameraYaml(readText(yaml, kMaxEurocYamlBytes, "camera sensor.yaml"),
-                                       yaml.string());
+  camera.calibration =
+      parseCameraYaml(readText(yaml, kMaxEurocYamlBytes, "camera sensor.yaml"), yaml.string());
   camera.calibration.name = name;
   const fs::path csv = dir / "data.csv";
   camera.rows = parseImageCsv(readText(csv, kMaxEurocCsvBytes, "camera data.csv"), csv.string());
@@ -182,8 +182,8 @@ EurocDataset EurocDataset::open(const std::string& folder, const ReaderOptions& 
         readText(gt_csv, kMaxEurocCsvBytes, "ground truth data.csv"), gt_csv.string());
     d.ground_truth_file_ = gt_csv.string();
   } else if (fs::exists(gt_tum)) {
-    d.ground_truth_ = parseGroundTruthTum(
-        readText(gt_tum, kMaxEurocCsvBytes, "TUM ground truth"), gt_tum.string());
+    d.ground_truth_ = parseGroundTruthTum(readText(gt_tum, kMaxEurocCsvBytes, "TUM ground truth"),
+                                          gt_tum.string());
     d.ground_truth_file_ = gt_tum.string();
   }
   d.stats_.ground_truth_states = d.ground_truth_.size();

@@ -6,17 +6,18 @@
 //   <session>/mav0/imu0/{sensor.yaml, data.csv}
 //   <session>/mav0/state_groundtruth_estimate0/data.csv                 ground truth (optional)
 //   <session>/groundtruth_body.txt                                      TUM body ground truth,
-//                                                                        read when the above is absent
+//                                                                        read when the above is
+//                                                                        absent
 // NOTE: a root groundtruth.txt is NOT read: in Strata's simulated sessions it is the TUM RGB-D
 // camera trajectory (T_W_C of the depth camera), not the body.
 //
 // What open() checks, and what happens:
 //   error (InputError naming the path, and the line or field): a missing folder or file, a
-//     data.csv none of whose images exists, a malformed row or yaml key, timestamps that repeat or go
-//     back in any data.csv (EuRoC writes them in order: either means a corrupt file), calibration
-//     that cannot describe the images (non-positive focal length, principal point outside the
-//     image, unknown distortion model, non-rigid T_BS), the first frame's images not of the
-//     sensor.yaml resolution, no IMU sample, no stereo pair.
+//     data.csv none of whose images exists, a malformed row or yaml key, timestamps that repeat or
+//     go back in any data.csv (EuRoC writes them in order: either means a corrupt file),
+//     calibration that cannot describe the images (non-positive focal length, principal point
+//     outside the image, unknown distortion model, non-rigid T_BS), the first frame's images not of
+//     the sensor.yaml resolution, no IMU sample, no stereo pair.
 //   counted in stats() and dropped: IMU rows with NaN/inf values; data.csv rows whose image file
 //     is absent (excerpts keep the full csv); cam0/cam1 rows with no partner within
 //     options.stereo_tolerance_ns.

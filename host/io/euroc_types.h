@@ -17,17 +17,17 @@
 namespace strata::euroc {
 
 enum class DistortionModel {
-  kNone,                // no coefficients (e.g. rectified or simulated images)
-  kRadialTangential,    // OpenCV plumb_bob: k1 k2 p1 p2
-  kEquidistant,         // Kannala-Brandt fisheye: k1 k2 k3 k4
+  kNone,              // no coefficients (e.g. rectified or simulated images)
+  kRadialTangential,  // OpenCV plumb_bob: k1 k2 p1 p2
+  kEquidistant,       // Kannala-Brandt fisheye: k1 k2 k3 k4
 };
 
 /// One camera of the rig, as its sensor.yaml states it (images are NOT undistorted by the reader).
 struct CameraCalibration {
-  std::string name;     // "cam0", "cam1"
-  int width_px = 0;     // resolution: [width, height]
+  std::string name;  // "cam0", "cam1"
+  int width_px = 0;  // resolution: [width, height]
   int height_px = 0;
-  double fu_px = 0.0;   // intrinsics: [fu, fv, cu, cv]; pixel centres at integer coordinates
+  double fu_px = 0.0;  // intrinsics: [fu, fv, cu, cv]; pixel centres at integer coordinates
   double fv_px = 0.0;
   double cu_px = 0.0;
   double cv_px = 0.0;
@@ -40,10 +40,10 @@ struct CameraCalibration {
 /// imu0's sensor.yaml: rates and Kalibr's continuous-time noise model.
 struct ImuCalibration {
   double rate_hz = 0.0;
-  double gyro_noise_density = 0.0;   // rad / s / sqrt(Hz)
-  double gyro_random_walk = 0.0;     // rad / s^2 / sqrt(Hz)
-  double accel_noise_density = 0.0;  // m / s^2 / sqrt(Hz)
-  double accel_random_walk = 0.0;    // m / s^3 / sqrt(Hz)
+  double gyro_noise_density = 0.0;                          // rad / s / sqrt(Hz)
+  double gyro_random_walk = 0.0;                            // rad / s^2 / sqrt(Hz)
+  double accel_noise_density = 0.0;                         // m / s^2 / sqrt(Hz)
+  double accel_random_walk = 0.0;                           // m / s^3 / sqrt(Hz)
   Eigen::Isometry3d T_B_I = Eigen::Isometry3d::Identity();  // IMU pose in the body frame
 };
 
@@ -76,9 +76,9 @@ struct GroundTruthState {
   std::int64_t timestamp_ns = 0;
   Eigen::Isometry3d T_W_B = Eigen::Isometry3d::Identity();  // body-to-world
   bool has_velocity_and_biases = false;
-  Eigen::Vector3d velocity_W = Eigen::Vector3d::Zero();      // m/s
-  Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();       // rad/s
-  Eigen::Vector3d accel_bias = Eigen::Vector3d::Zero();      // m/s^2
+  Eigen::Vector3d velocity_W = Eigen::Vector3d::Zero();  // m/s
+  Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();   // rad/s
+  Eigen::Vector3d accel_bias = Eigen::Vector3d::Zero();  // m/s^2
 };
 
 /// What the reader counted while opening (nothing here is an error; see euroc_dataset.h).

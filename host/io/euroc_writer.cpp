@@ -37,9 +37,12 @@ std::string transformYaml(const Eigen::Isometry3d& T) {
 
 const char* distortionName(DistortionModel model) {
   switch (model) {
-    case DistortionModel::kRadialTangential: return "radial-tangential";
-    case DistortionModel::kEquidistant: return "equidistant";
-    case DistortionModel::kNone: break;
+    case DistortionModel::kRadialTangential:
+      return "radial-tangential";
+    case DistortionModel::kEquidistant:
+      return "equidistant";
+    case DistortionModel::kNone:
+      break;
   }
   return "none";
 }
@@ -84,10 +87,10 @@ void writeImuCsv(const std::string& path, const std::vector<ImuSample>& samples)
       "a_RS_S_x [m s^-2],a_RS_S_y [m s^-2],a_RS_S_z [m s^-2]\n";
   char line[512];
   for (const ImuSample& s : samples) {
-    const int n = std::snprintf(line, sizeof(line), "%lld,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
-                                static_cast<long long>(s.timestamp_ns), s.gyro_rad_s.x(),
-                                s.gyro_rad_s.y(), s.gyro_rad_s.z(), s.accel_mps2.x(),
-                                s.accel_mps2.y(), s.accel_mps2.z());
+    const int n =
+        std::snprintf(line, sizeof(line), "%lld,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
+                      static_cast<long long>(s.timestamp_ns), s.gyro_rad_s.x(), s.gyro_rad_s.y(),
+                      s.gyro_rad_s.z(), s.accel_mps2.x(), s.accel_mps2.y(), s.accel_mps2.z());
     text.append(line, static_cast<std::size_t>(n));
   }
   writeText(path, text);
@@ -116,7 +119,8 @@ void writeGroundTruthCsv(const std::string& path, const std::vector<GroundTruthS
 }
 
 void writeGroundTruthTum(const std::string& path, const std::vector<GroundTruthState>& states) {
-  std::string text = "# body (= IMU) pose in the world, TUM format: timestamp[s] tx ty tz qx qy qz qw\n";
+  std::string text =
+      "# body (= IMU) pose in the world, TUM format: timestamp[s] tx ty tz qx qy qz qw\n";
   char stamp[48];
   for (const GroundTruthState& s : states) {
     std::snprintf(stamp, sizeof(stamp), "%lld.%09lld ",
@@ -157,9 +161,9 @@ void EurocWriter::addFrame(std::int64_t timestamp_ns, const GreyImage& left,
                        std::to_string(eyes[i]->height_px) + ", calibration says " +
                        std::to_string(camera.width_px) + "x" + std::to_string(camera.height_px));
     }
-    writeGreyPng((fs::path(mav0_) / camera.name / "data" / (std::to_string(timestamp_ns) + ".png"))
-                     .string(),
-                 *eyes[i]);
+    writeGreyPng(
+        (fs::path(mav0_) / camera.name / "data" / (std::to_string(timestamp_ns) + ".png")).string(),
+        *eyes[i]);
   }
   timestamps_ns_.push_back(timestamp_ns);
 }
@@ -167,7 +171,8 @@ void EurocWriter::addFrame(std::int64_t timestamp_ns, const GreyImage& left,
 void EurocWriter::finish(const std::vector<ImuSample>& imu,
                          const std::vector<GroundTruthState>& truth) {
   std::string csv = "#timestamp [ns],filename\n";
-  for (std::int64_t t : timestamps_ns_) csv += std::to_string(t) + "," + std::to_string(t) + ".png\n";
+  for (std::int64_t t : timestamps_ns_)
+    csv += std::to_string(t) + "," + std::to_string(t) + ".png\n";
   for (const CameraCalibration& camera : calibration_.cameras) {
     writeText(fs::path(mav0_) / camera.name / "data.csv", csv);
   }

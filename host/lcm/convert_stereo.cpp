@@ -27,10 +27,10 @@ GreyImage decodeGrey(const image_t& image, const std::string& what) {
   const std::size_t expected = static_cast<std::size_t>(image.width) * image.height;
   if (image.size < 0 || static_cast<std::size_t>(image.size) != expected ||
       image.data.size() != expected) {
-    throw InputError(what + ": " + std::to_string(image.data.size()) + " bytes of mono8 data (size " +
-                     std::to_string(image.size) + ") for " + std::to_string(image.width) + "x" +
-                     std::to_string(image.height) + " pixels (expected " +
-                     std::to_string(expected) + ")");
+    throw InputError(what + ": " + std::to_string(image.data.size()) +
+                     " bytes of mono8 data (size " + std::to_string(image.size) + ") for " +
+                     std::to_string(image.width) + "x" + std::to_string(image.height) +
+                     " pixels (expected " + std::to_string(expected) + ")");
   }
   GreyImage grey;
   grey.width_px = image.width;
@@ -82,7 +82,8 @@ StereoFrameMsg decodeStereo(const stereo_image_t& message) {
                      " differs from the frame's " + std::to_string(message.utime));
   }
   frame.right = decodeGrey(message.right, where + " right image");
-  if (frame.right.width_px != frame.left.width_px || frame.right.height_px != frame.left.height_px) {
+  if (frame.right.width_px != frame.left.width_px ||
+      frame.right.height_px != frame.left.height_px) {
     throw InputError(where + ": right image is " + std::to_string(frame.right.width_px) + "x" +
                      std::to_string(frame.right.height_px) + ", left is " +
                      std::to_string(frame.left.width_px) + "x" +

@@ -51,8 +51,7 @@ euroc::GroundTruthState bodyState(const TrajectoryState& state, const ImuSample&
   truth.T_W_B = state.T_W_C * T_C_B;
   truth.has_velocity_and_biases = true;
   truth.velocity_W =
-      state.velocity_W +
-      state.T_W_C.linear() * state.angular_velocity_C.cross(T_C_B.translation());
+      state.velocity_W + state.T_W_C.linear() * state.angular_velocity_C.cross(T_C_B.translation());
   truth.gyro_bias = sample.gyro_bias;
   truth.accel_bias = sample.accel_bias;
   return truth;

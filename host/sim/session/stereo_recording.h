@@ -33,9 +33,9 @@ struct StereoRecordingConfig {
   double focal_px = 0.0;
   double baseline_m = 0.11;
   double camera_rate_hz = 20.0;
-  double pixel_noise_sigma = 1.0;        // grey levels
-  double exposure_gain_sigma = 0.03;     // per frame, relative
-  double exposure_offset_sigma = 2.0;    // per frame, grey levels
+  double pixel_noise_sigma = 1.0;      // grey levels
+  double exposure_gain_sigma = 0.03;   // per frame, relative
+  double exposure_offset_sigma = 2.0;  // per frame, grey levels
   /// Stereo (two cameras) or mono (cam0 only).
   bool stereo = true;
   /// IMU at imu.rate_hz (200 Hz default) with Kalibr noise; T_C_B defaults to defaultT_C_B().
