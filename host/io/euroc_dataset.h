@@ -25,6 +25,14 @@
 //     samples they lack.
 // loadImages() checks every later image's size (InputError naming the file and both sizes).
 //
+// Replay, e.g. in a VIO front end:
+//   const euroc::EurocDataset d = euroc::EurocDataset::open(folder);
+//   for (const euroc::Event& e : d.events()) {
+//     if (e.kind == euroc::Event::Kind::kImu) addImu(d.imu()[e.index]);
+//     else addFrame(d.frames()[e.index].timestamp_ns, d.loadImages(e.index));
+//   }
+// with the cameras' T_B_C and the IMU noise from d.calibration().
+//
 // Thread safety: an opened dataset is immutable; every const method may be called from several
 // threads at once.
 #include <Eigen/Geometry>
