@@ -314,6 +314,19 @@ TEST(EurocParse, AcceptsOpenCvHeaderAndRefusesMalformedRows) {
   const CameraCalibration c = parseCameraYaml(cameraYaml(smallCalibration(false).cameras[0]), "x");
   EXPECT_EQ(c.width_px, 16);
   EXPECT_EQ(c.distortion, DistortionModel::kNone);
+  CameraCalibration fisheye = smallCalibration(false).cameras[0];
+  fisheye.distortion = DistortionModel::kEquidistant;
+  fisheye.distortion_coefficients = {0.1, -0.02, 0.003, -0.0004};
+  const CameraCalibration f = parseCameraYaml(cameraYaml(fisheye), "x");
+  EXPECT_EQ(f.distortion, DistortionModel::kEquidistant);
+  EXPECT_DOUBLE_EQ(f.distortion_coefficients[3], -0.0004);
+  std::string radtan = cameraYaml(fisheye);
+  radtan.replace(radtan.find("equidistant"), 11, "radtan");
+  EXPECT_EQ(parseCameraYaml(radtan, "x").distortion, DistortionModel::kRadialTangential);
+  std::string none_with_values = cameraYaml(fisheye);
+  none_with_values.replace(none_with_values.find("equidistant"), 11, "none");
+  EXPECT_THROW(parseCameraYaml(none_with_values, "x"), InputError);  // coefficients need a model
+  EXPECT_THROW(parseImageCsv("1,a.png\n1,b.png\n", "f.csv"), InputError);  // duplicate stamp
   EXPECT_THROW(parseImageCsv("1,a.png\n2,b.png,extra\n", "f.csv"), InputError);
   EXPECT_THROW(parseImageCsv("1,../a.png\n", "f.csv"), InputError);
   EXPECT_THROW(parseImageCsv("-5,a.png\n", "f.csv"), InputError);
