@@ -1,0 +1,47 @@
+#pragma once
+// Left-to-right stereo matching by KLT: each left feature is tracked into the right image from a
+// guess (its last right position moved by its left motion, else the projection at
+// init_depth_m), checked forward-backward, against the epipolar line of the calibrated pair
+// (for a rectified pair: the same row) and against depth bounds by triangulation.
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+#include <optional>
+#include <vector>
+
+#include "odometry/frontend/camera.h"
+#include "odometry/frontend/klt.h"
+
+namespace strata::odometry {
+
+struct StereoMatchConfig {
+  double epipolar_max_px = 1.5;  // distance to the epipolar line in the right image
+  double min_depth_m = 0.1;      // triangulated depth in both cameras must lie in the bounds
+  double max_depth_m = 60.0;     //   (positive disparity; far points constrain only rotation)
+  double init_depth_m = 3.0;     // depth of the initial guess of a feature never matched before
+
+  /// Throws InputError naming the bad field.
+  void validate() const;
+};
+
+struct StereoMatch {
+  Eigen::Vector2d uv_right_px;
+  Eigen::Vector2d xy_right_norm;
+  double depth_left_m;  // triangulated z in the left camera
+};
+
+/// Depths (z_left, z_right) of the two rays' closest approach, least squares; nullopt when the
+/// rays are parallel. xy_*: normalized coordinates; T_C1_C0 maps left-camera points to right.
+std::optional<Eigen::Vector2d> triangulateDepths(const Eigen::Vector2d& xy_left,
+                                                 const Eigen::Vector2d& xy_right,
+                                                 const Eigen::Isometry3d& T_C1_C0);
+
+/// One result per left feature (nullopt = rejected). `guess_right_px[i]` (optional) overrides
+/// the projection guess.
+std::vector<std::optional<StereoMatch>> matchStereo(
+    const std::vector<cv::Mat>& pyramid_left, const std::vector<cv::Mat>& pyramid_right,
+    const StereoCamera& camera, const std::vector<Eigen::Vector2d>& uv_left_px,
+    const std::vector<Eigen::Vector2d>& xy_left_norm,
+    const std::vector<std::optional<Eigen::Vector2d>>& guess_right_px,
+    const KltConfig& klt, double border_px, const StereoMatchConfig& config);
+
+}  // namespace strata::odometry
