@@ -28,6 +28,7 @@ struct FrontendStats {
   int tracked = 0;              // previous tracks that survived every check into this frame
   int rejected_klt = 0;         // KLT did not converge or left the image
   int rejected_fwd_bwd = 0;     // backward KLT did not return within fwd_bwd_max_px
+  int rejected_appearance = 0;  // patch no longer like the one detected (appearance_check.h)
   int rejected_geometry = 0;    // outliers of the RANSAC essential matrix / homography
   int stereo_matched = 0;       // features with a right-camera observation
   int stereo_rejected = 0;      // right-eye KLT failed, fwd-bwd, epipolar or depth bounds
@@ -42,7 +43,11 @@ struct FrontendStats {
   /// Geometric model of the outlier check: 'E' essential matrix, 'H' homography (small
   /// parallax), '-' none (first frame or too few tracks).
   char geometric_model = '-';
-  double process_time_ms = 0.0;  // wall time of FeatureTracker::process
+  double process_time_ms = 0.0;  // wall time of FeatureTracker::process, and its stages:
+  double pyramid_ms = 0.0;       //   left image pyramid
+  double track_ms = 0.0;         //   KLT forward-backward, appearance and geometric checks
+  double detect_ms = 0.0;        //   new corners
+  double stereo_ms = 0.0;        //   right pyramid and stereo matching
 };
 
 struct FrameFeatures {

@@ -47,6 +47,12 @@ void FrontendConfig::validate() const {
   keyframe.validate();
   if (min_tracked < 0) throw InputError("FrontendConfig: min_tracked must be >= 0");
   if (!(border_px >= 0.0)) throw InputError("FrontendConfig: border_px must be >= 0");
+  if (appearance_patch_px < 3 || appearance_patch_px % 2 == 0) {
+    throw InputError("FrontendConfig: appearance_patch_px must be odd and >= 3");
+  }
+  if (!(min_appearance_ncc >= 0.0 && min_appearance_ncc < 1.0)) {
+    throw InputError("FrontendConfig: min_appearance_ncc must be in [0, 1)");
+  }
 }
 
 FeatureTracker::FeatureTracker(const Camera& camera, FrontendConfig config)
@@ -104,6 +110,12 @@ void FeatureTracker::trackPrevious(const std::vector<cv::Mat>& pyramid,
     if (status[i] == KltStatus::kFailed) ++stats->rejected_klt;
     if (status[i] == KltStatus::kFwdBwd) ++stats->rejected_fwd_bwd;
     if (status[i] != KltStatus::kOk) continue;
+    if (config_.min_appearance_ncc > 0.0 &&
+        patchNcc(tracks_[i].patch, normalizedPatch(pyramid[0], to[i], config_.appearance_patch_px)) <
+            config_.min_appearance_ncc) {
+      ++stats->rejected_appearance;
+      continue;
+    }
     Track t = tracks_[i];
     xy_prev.push_back(t.xy_norm);
     if (t.uv_right_px) *t.uv_right_px += toEigen(to[i]) - toEigen(t.uv_px);
@@ -134,7 +146,8 @@ void FeatureTracker::addNewCorners(const cv::Mat& left, FrontendStats* stats) {
   std::vector<cv::Point2f> existing;
   for (const Track& t : tracks_) existing.push_back(t.uv_px);
   for (const cv::Point2f& p : detectCorners(left, existing, wanted, config_.detector)) {
-    tracks_.push_back(Track{next_id_++, p, camera_.left.undistort(toEigen(p)), 1, std::nullopt});
+    tracks_.push_back(Track{next_id_++, p, camera_.left.undistort(toEigen(p)), 1, std::nullopt,
+                            normalizedPatch(left, p, config_.appearance_patch_px)});
     ++stats->detected;
   }
 }
@@ -142,7 +155,15 @@ void FeatureTracker::addNewCorners(const cv::Mat& left, FrontendStats* stats) {
 void FeatureTracker::matchRight(const std::vector<cv::Mat>& pyramid_left, const cv::Mat& right,
                                 std::vector<std::optional<StereoMatch>>* matches,
                                 FrontendStats* stats) {
-  const std::vector<cv::Mat> pyramid_right = buildPyramid(right, config_.klt);
+  cv::Mat adjusted = right;
+  if (config_.stereo.match_brightness) {
+    cv::Scalar ml, sl, mr, sr;
+    cv::meanStdDev(pyramid_left[0], ml, sl);
+    cv::meanStdDev(right, mr, sr);
+    const double gain = sl[0] / std::max(sr[0], 1.0);
+    right.convertTo(adjusted, CV_8U, gain, ml[0] - gain * mr[0]);
+  }
+  const std::vector<cv::Mat> pyramid_right = buildPyramid(adjusted, config_.klt);
   std::vector<Eigen::Vector2d> uv, xy;
   std::vector<std::optional<Eigen::Vector2d>> guess;
   for (const Track& t : tracks_) {
@@ -177,13 +198,24 @@ FrameFeatures FeatureTracker::process(std::int64_t timestamp_ns, const cv::Mat& 
   FrameFeatures out;
   out.timestamp_ns = timestamp_ns;
   FrontendStats& stats = out.stats;
+  auto mark = start;
+  const auto lap = [&mark] {
+    const auto now = std::chrono::steady_clock::now();
+    const double ms = std::chrono::duration<double, std::milli>(now - mark).count();
+    mark = now;
+    return ms;
+  };
   std::vector<cv::Mat> pyramid = buildPyramid(left, config_.klt);
+  stats.pyramid_ms = lap();
   const bool has_previous = previous_timestamp_ns_.has_value();
   if (has_previous) trackPrevious(pyramid, R_Ck_Ckm1, &stats);
   stats.lost = has_previous && stats.tracked < config_.min_tracked;
+  stats.track_ms = lap();
   addNewCorners(left, &stats);
+  stats.detect_ms = lap();
   std::vector<std::optional<StereoMatch>> matches(tracks_.size());
   if (stereo_) matchRight(pyramid, right, &matches, &stats);
+  stats.stereo_ms = lap();
 
   out.features.reserve(tracks_.size());
   for (std::size_t i = 0; i < tracks_.size(); ++i) {

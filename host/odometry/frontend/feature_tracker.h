@@ -10,6 +10,7 @@
 #include <optional>
 #include <vector>
 
+#include "odometry/frontend/appearance_check.h"
 #include "odometry/frontend/camera.h"
 #include "odometry/frontend/corner_detector.h"
 #include "odometry/frontend/feature_observation.h"
@@ -30,6 +31,11 @@ struct FrontendConfig {
   int min_tracked = 20;
   /// Tracks may not end closer than this to the image edge (KLT window support).
   double border_px = 4.0;
+  /// Appearance check (appearance_check.h): a track whose patch correlates below
+  /// min_appearance_ncc with its patch at detection is dropped; 0 turns the check off. Lower
+  /// keeps more sliding T-junctions, higher drops more true points under strong perspective.
+  int appearance_patch_px = 15;
+  double min_appearance_ncc = 0.7;
 
   /// Throws InputError naming the bad field.
   void validate() const;
@@ -66,6 +72,7 @@ class FeatureTracker {
     Eigen::Vector2d xy_norm;
     int length;
     std::optional<Eigen::Vector2d> uv_right_px;  // last right-eye position, stereo guess
+    cv::Mat patch;  // normalizedPatch at detection (appearance_check.h); empty = flat
   };
 
   void checkImage(const cv::Mat& image, const Camera& camera) const;

@@ -3,6 +3,7 @@
 #include <opencv2/calib3d.hpp>
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/error.h"
 
@@ -25,6 +26,50 @@ double median(std::vector<double> values) {
   return *middle;
 }
 
+// Squared error of one correspondence under H (transfer) or F (Sampson), normalized units.
+double squaredError(const cv::Mat& model, char kind, const Eigen::Vector2d& a,
+                    const Eigen::Vector2d& b) {
+  Eigen::Matrix3d M;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) M(r, c) = model.at<double>(r, c);
+  }
+  if (kind == 'H') {
+    const Eigen::Vector3d p = M * a.homogeneous();
+    if (std::abs(p.z()) < 1e-12) return 1e30;
+    return (p.hnormalized() - b).squaredNorm();
+  }
+  const Eigen::Vector3d Fa = M * a.homogeneous(), Ftb = M.transpose() * b.homogeneous();
+  const double e = b.homogeneous().dot(Fa);
+  const double denominator = Fa.head<2>().squaredNorm() + Ftb.head<2>().squaredNorm();
+  return denominator > 0.0 ? e * e / denominator : 1e30;
+}
+
+// RANSAC's mask comes from one minimal sample, whose noise drops good points near the bound.
+// Local optimisation: refit by least squares on the inliers (homography DLT, or the 8-point
+// fundamental matrix, which in normalized coordinates is an essential matrix up to its
+// constraints), then take the inliers of the refit. Two rounds settle it.
+void refitInliers(const std::vector<cv::Point2f>& a, const std::vector<cv::Point2f>& b,
+                  const std::vector<Eigen::Vector2d>& xa, const std::vector<Eigen::Vector2d>& xb,
+                  char kind, double threshold, std::vector<unsigned char>* mask) {
+  for (int round = 0; round < 2; ++round) {
+    std::vector<cv::Point2f> in_a, in_b;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      if ((*mask)[i]) {
+        in_a.push_back(a[i]);
+        in_b.push_back(b[i]);
+      }
+    }
+    if (in_a.size() < 12) return;
+    const cv::Mat model = kind == 'H' ? cv::findHomography(in_a, in_b, 0)
+                                      : cv::findFundamentalMat(in_a, in_b, cv::FM_8POINT);
+    // An 8-point fit can come back 3k x 3 or empty on degenerate sets: keep the last mask.
+    if (model.rows != 3 || model.cols != 3) return;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      (*mask)[i] = squaredError(model, kind, xa[i], xb[i]) <= threshold * threshold;
+    }
+  }
+}
+
 }  // namespace
 
 void GeometricCheckConfig::validate() const {
@@ -33,6 +78,9 @@ void GeometricCheckConfig::validate() const {
   }
   if (!(confidence > 0.0 && confidence < 1.0)) {
     throw InputError("GeometricCheckConfig: confidence must be in (0, 1)");
+  }
+  if (!(max_homography_reject_share >= 0.0 && max_homography_reject_share <= 1.0)) {
+    throw InputError("GeometricCheckConfig: max_homography_reject_share must be in [0, 1]");
   }
   if (!(homography_below_parallax_px >= 0.0)) {
     throw InputError("GeometricCheckConfig: homography_below_parallax_px must be >= 0");
@@ -77,10 +125,24 @@ GeometricCheckResult rejectOutliers(const std::vector<Eigen::Vector2d>& xy_prev,
   if (result.median_parallax_px < config.homography_below_parallax_px) {
     result.model = 'H';
     model = cv::findHomography(prev, cur, cv::RANSAC, threshold, mask, 2000, config.confidence);
-  } else {
+    if (!model.empty() && mask.size() == xy_cur.size()) {
+      refitInliers(prev, cur, xy_prev, xy_cur, 'H', threshold, &mask);
+    }
+    // Small flow may still hide translation (rotation cancelling it, no prediction given):
+    // then H drops good points of other depths, and E takes over.
+    const auto rejected = std::count(mask.begin(), mask.end(), static_cast<unsigned char>(0));
+    if (model.empty() || mask.size() != xy_cur.size() ||
+        rejected > config.max_homography_reject_share * static_cast<double>(xy_cur.size())) {
+      model = cv::Mat();
+    }
+  }
+  if (model.empty()) {
     result.model = 'E';
     model = cv::findEssentialMat(prev, cur, 1.0, cv::Point2d(0, 0), cv::RANSAC, config.confidence,
                                  threshold, mask);
+    if (!model.empty() && mask.size() == xy_cur.size()) {
+      refitInliers(prev, cur, xy_prev, xy_cur, 'E', threshold, &mask);
+    }
   }
   // No model found (degenerate sample sets): keep everything rather than drop a whole frame.
   if (model.empty() || mask.size() != xy_cur.size()) {

@@ -4,10 +4,14 @@
 //   - parallax (rotation-compensated when a rotation prediction is given) at least
 //     homography_below_parallax_px: RANSAC on the essential matrix (5-point, Nister 2004),
 //     Sampson error below ransac_threshold_px;
-//   - below: RANSAC on a homography, transfer error below ransac_threshold_px. An essential
+//   - below: RANSAC on a homography, transfer error below ransac_threshold_px, as long as it
+//     rejects at most max_homography_reject_share of the points (else E as above). An essential
 //     matrix is undetermined when the camera barely translates (a still or only rotating camera:
 //     every translation fits), so it would let a moving object through; a homography is exact
-//     there and still tight for small baselines.
+//     there. When small flow only hides translation (a rotation cancelling it and no prediction
+//     given), H would reject good points at other depths: the share bound hands over to E.
+// Both models are refit by least squares on RANSAC's inliers and the inliers recomputed from
+// the refit (one minimal sample's noise otherwise drops good points near the bound).
 #include <Eigen/Geometry>
 #include <optional>
 #include <vector>
@@ -17,7 +21,8 @@ namespace strata::odometry {
 struct GeometricCheckConfig {
   double ransac_threshold_px = 1.0;  // inlier bound; lower drops more good tracks on noisy images
   double confidence = 0.999;         // RANSAC: probability of drawing one all-inlier sample
-  double homography_below_parallax_px = 1.5;  // median parallax under which H replaces E
+  double homography_below_parallax_px = 1.5;  // median parallax under which H is tried first
+  double max_homography_reject_share = 0.15;   // H rejecting more: translation, use E
   int min_correspondences = 10;      // fewer: no check (everything is kept, model '-')
 
   /// Throws InputError naming the bad field.

@@ -9,7 +9,7 @@
 namespace strata::odometry {
 
 struct KltConfig {
-  int window_px = 21;       // LK window side; larger follows bigger motion, costs quadratically
+  int window_px = 15;       // LK window side; larger follows bigger motion, costs quadratically
   int pyramid_levels = 3;   // levels above the base; each doubles the capture range
   int max_iterations = 30;  // per level
   double epsilon_px = 0.01;      // LK stops when the update is below this

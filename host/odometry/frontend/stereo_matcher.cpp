@@ -25,6 +25,7 @@ void StereoMatchConfig::validate() const {
     throw InputError("StereoMatchConfig: need 0 < min_depth_m < max_depth_m");
   }
   if (!(init_depth_m > 0.0)) throw InputError("StereoMatchConfig: init_depth_m must be > 0");
+  if (!(retry_depth_m >= 0.0)) throw InputError("StereoMatchConfig: retry_depth_m must be >= 0");
 }
 
 std::optional<Eigen::Vector2d> triangulateDepths(const Eigen::Vector2d& xy_left,
@@ -47,37 +48,60 @@ std::vector<std::optional<StereoMatch>> matchStereo(
     const KltConfig& klt, double border_px, const StereoMatchConfig& config) {
   const std::size_t n = uv_left_px.size();
   std::vector<std::optional<StereoMatch>> matches(n);
-  if (n == 0) return matches;
   const Eigen::Isometry3d T_C1_C0 = camera.T_C0_C1().inverse();
-  std::vector<cv::Point2f> from(n), to(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    from[i] = cv::Point2f(static_cast<float>(uv_left_px[i].x()),
-                          static_cast<float>(uv_left_px[i].y()));
-    Eigen::Vector2d guess = camera.right.projectPoint(
-        T_C1_C0 * (config.init_depth_m * xy_left_norm[i].homogeneous()));
-    if (guess_right_px[i]) guess = *guess_right_px[i];
-    if (!guess.allFinite()) guess = uv_left_px[i];
-    to[i] = cv::Point2f(static_cast<float>(guess.x()), static_cast<float>(guess.y()));
-  }
-  const cv::Size right_size(camera.right.width_px, camera.right.height_px);
-  const std::vector<KltStatus> status =
-      trackForwardBackward(pyramid_left, pyramid_right, from, &to, right_size, border_px, klt);
   const Eigen::Matrix3d E = camera.essentialRightLeft();
+  const cv::Size right_size(camera.right.width_px, camera.right.height_px);
+  const auto projectionGuess = [&](std::size_t i, double depth_m) {
+    const Eigen::Vector2d guess =
+        camera.right.projectPoint(T_C1_C0 * (depth_m * xy_left_norm[i].homogeneous()));
+    return guess.allFinite() ? guess : uv_left_px[i];
+  };
+  // One KLT pass over `subset` from `guesses`; accepted matches fill `matches`.
+  const auto attempt = [&](const std::vector<std::size_t>& subset,
+                           const std::vector<Eigen::Vector2d>& guesses) {
+    std::vector<cv::Point2f> from, to;
+    for (std::size_t j = 0; j < subset.size(); ++j) {
+      from.emplace_back(static_cast<float>(uv_left_px[subset[j]].x()),
+                        static_cast<float>(uv_left_px[subset[j]].y()));
+      to.emplace_back(static_cast<float>(guesses[j].x()), static_cast<float>(guesses[j].y()));
+    }
+    const std::vector<KltStatus> status =
+        trackForwardBackward(pyramid_left, pyramid_right, from, &to, right_size, border_px, klt);
+    for (std::size_t j = 0; j < subset.size(); ++j) {
+      if (status[j] != KltStatus::kOk) continue;
+      const std::size_t i = subset[j];
+      const Eigen::Vector2d uv_right(to[j].x, to[j].y);
+      const Eigen::Vector2d xy_right = camera.right.undistort(uv_right);
+      if (epipolarDistancePx(E, xy_left_norm[i], xy_right, camera.right.focalMean()) >
+          config.epipolar_max_px) {
+        continue;
+      }
+      const std::optional<Eigen::Vector2d> depths =
+          triangulateDepths(xy_left_norm[i], xy_right, T_C1_C0);
+      if (!depths || depths->minCoeff() < config.min_depth_m ||
+          depths->maxCoeff() > config.max_depth_m) {
+        continue;
+      }
+      matches[i] = StereoMatch{uv_right, xy_right, depths->x()};
+    }
+  };
+  std::vector<std::size_t> all(n);
+  std::vector<Eigen::Vector2d> guesses(n);
   for (std::size_t i = 0; i < n; ++i) {
-    if (status[i] != KltStatus::kOk) continue;
-    const Eigen::Vector2d uv_right(to[i].x, to[i].y);
-    const Eigen::Vector2d xy_right = camera.right.undistort(uv_right);
-    if (epipolarDistancePx(E, xy_left_norm[i], xy_right, camera.right.focalMean()) >
-        config.epipolar_max_px) {
-      continue;
+    all[i] = i;
+    guesses[i] = guess_right_px[i] ? *guess_right_px[i] : projectionGuess(i, config.init_depth_m);
+  }
+  attempt(all, guesses);
+  // Near points (a floor under the sensor) lie beyond KLT's capture range from a far guess.
+  if (config.retry_depth_m > 0.0) {
+    std::vector<std::size_t> retry;
+    std::vector<Eigen::Vector2d> near_guesses;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (matches[i]) continue;
+      retry.push_back(i);
+      near_guesses.push_back(projectionGuess(i, config.retry_depth_m));
     }
-    const std::optional<Eigen::Vector2d> depths =
-        triangulateDepths(xy_left_norm[i], xy_right, T_C1_C0);
-    if (!depths || depths->minCoeff() < config.min_depth_m ||
-        depths->maxCoeff() > config.max_depth_m) {
-      continue;
-    }
-    matches[i] = StereoMatch{uv_right, xy_right, depths->x()};
+    attempt(retry, near_guesses);
   }
   return matches;
 }

@@ -1,7 +1,7 @@
 #pragma once
 // Left-to-right stereo matching by KLT: each left feature is tracked into the right image from a
 // guess (its last right position moved by its left motion, else the projection at
-// init_depth_m), checked forward-backward, against the epipolar line of the calibrated pair
+// init_depth_m; those missed are tried again from retry_depth_m), checked forward-backward, against the epipolar line of the calibrated pair
 // (for a rectified pair: the same row) and against depth bounds by triangulation.
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
@@ -18,6 +18,10 @@ struct StereoMatchConfig {
   double min_depth_m = 0.1;      // triangulated depth in both cameras must lie in the bounds
   double max_depth_m = 60.0;     //   (positive disparity; far points constrain only rotation)
   double init_depth_m = 3.0;     // depth of the initial guess of a feature never matched before
+  double retry_depth_m = 0.8;    // second guess for features the first missed (0 = no retry)
+  /// Scale and offset the right image to the left image's mean and spread before matching: KLT
+  /// assumes constant brightness, and the two eyes' exposures differ (EuRoC: ~15 grey levels).
+  bool match_brightness = true;
 
   /// Throws InputError naming the bad field.
   void validate() const;
