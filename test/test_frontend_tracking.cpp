@@ -365,12 +365,13 @@ TEST(FrontendTracking, EurocStillVehicleKeepsItsTracksAndMatchesStereo) {
     }
   }
   EXPECT_EQ(lost, 0);
-  EXPECT_GT(min_tracked, 120);  // of the 180 targeted
+  EXPECT_GT(min_tracked, 150);  // of the 180 targeted
+  // The lower image is carpet (little texture) that the vehicle's body hides from cam1.
   EXPECT_GT(min_stereo, 60);
   // The vehicle stands still: frame-to-frame flow is KLT noise and does not add up over 30 frames.
   EXPECT_LT(median(flow), 0.3);
   EXPECT_LT(median(drift_px), 0.5);
-  EXPECT_GT(median(stereo_share), 0.5);
+  EXPECT_GT(median(stereo_share), 0.4);
   EXPECT_LE(keyframes, 4);       // only the 0.5 s interval rule fires over 1.5 s
   const int full_length = static_cast<int>(std::count_if(
       lengths.begin(), lengths.end(), [](const auto& kv) { return kv.second == 30; }));
