@@ -1,16 +1,15 @@
 #include "frontend_command.h"
 
-#include <CLI/CLI.hpp>
-#include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
-
 #include <time.h>
 
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "core/error.h"
 #include "json.h"
@@ -38,9 +37,12 @@ sim::AnalyticRayScene room() {
   scene.add(sim::Plane{V(0, -4, 0), V(0, 1, 0), {180, 170, 160}});
   scene.add(sim::Plane{V(3, 0, 0), V(-1, 0, 0), {160, 180, 170}});
   scene.add(sim::Plane{V(-3, 0, 0), V(1, 0, 0), {160, 180, 170}});
-  scene.add(sim::Box{V(-0.6, 1.5, 0.5), V(0.3, 0.3, 0.5), Eigen::Matrix3d::Identity(), {90, 110, 200}});
-  scene.add(sim::Box{V(0.9, 2.2, 1.2), V(0.4, 0.25, 0.3),
-                     Eigen::AngleAxisd(0.5, V::UnitZ()).matrix(), {210, 120, 90}});
+  scene.add(
+      sim::Box{V(-0.6, 1.5, 0.5), V(0.3, 0.3, 0.5), Eigen::Matrix3d::Identity(), {90, 110, 200}});
+  scene.add(sim::Box{V(0.9, 2.2, 1.2),
+                     V(0.4, 0.25, 0.3),
+                     Eigen::AngleAxisd(0.5, V::UnitZ()).matrix(),
+                     {210, 120, 90}});
   return scene;
 }
 
@@ -126,8 +128,12 @@ Json benchSim(int frames) {
   std::vector<cv::Mat> left, right;  // rendered before timing
   for (int k = 0; k <= frames; ++k) {
     const sim::GreyFrame f = camera.render(scene, pose(k), sim::Lighting{}, k);
-    left.push_back(cv::Mat(kHeight, kWidth, CV_8UC1, const_cast<std::uint8_t*>(f.eyes[0].pixels.data())).clone());
-    right.push_back(cv::Mat(kHeight, kWidth, CV_8UC1, const_cast<std::uint8_t*>(f.eyes[1].pixels.data())).clone());
+    left.push_back(
+        cv::Mat(kHeight, kWidth, CV_8UC1, const_cast<std::uint8_t*>(f.eyes[0].pixels.data()))
+            .clone());
+    right.push_back(
+        cv::Mat(kHeight, kWidth, CV_8UC1, const_cast<std::uint8_t*>(f.eyes[1].pixels.data()))
+            .clone());
   }
   odometry::FeatureTracker tracker(rig, odometry::FrontendConfig{});
   Series series;
@@ -138,7 +144,8 @@ Json benchSim(int frames) {
       series.cpu.push_back(processCpuMs() - cpu_start);
       series.add(f);
     }
-    if (f.stats.lost) throw Error("front end lost track on the simulated sequence, frame " + std::to_string(k));
+    if (f.stats.lost)
+      throw Error("front end lost track on the simulated sequence, frame " + std::to_string(k));
   }
   return summary("sim_room_752x480", series);
 }

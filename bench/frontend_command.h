@@ -10,8 +10,8 @@ class App;
 namespace strata::bench {
 
 struct FrontendBenchOptions {
-  int frames = 60;   // simulated stereo frames timed (after the first, which only detects)
-  int threads = 2;   // OpenCV threads (cv::setNumThreads); the VIO's budget is 2 cores
+  int frames = 60;  // simulated stereo frames timed (after the first, which only detects)
+  int threads = 2;  // OpenCV threads (cv::setNumThreads); the VIO's budget is 2 cores
   std::string out_path;
 };
 

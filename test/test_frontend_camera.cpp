@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "odometry/frontend/camera.h"
 #include "odometry/frontend/geometric_check.h"
+#include "odometry/frontend/keyframe_policy.h"
 #include "odometry/frontend/stereo_matcher.h"
 
 namespace strata::odometry {
@@ -55,8 +56,8 @@ TEST(FrontendCamera, StereoExtrinsicsFromBodyPosesAndBadCalibrationsNamed) {
   rig.left = eurocCam0();
   rig.right = eurocCam0();
   rig.right.name = "cam1";
-  const Eigen::Isometry3d T_B_C0 =
-      Eigen::Translation3d(0.1, 0.2, 0.3) * Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, 2, 3).normalized());
+  const Eigen::Isometry3d T_B_C0 = Eigen::Translation3d(0.1, 0.2, 0.3) *
+                                   Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, 2, 3).normalized());
   const Eigen::Isometry3d T_C0_C1 =
       Eigen::Translation3d(0.11, 0.001, -0.002) * Eigen::AngleAxisd(0.01, Eigen::Vector3d::UnitY());
   rig.left.T_B_C = T_B_C0;
@@ -73,6 +74,15 @@ TEST(FrontendCamera, StereoExtrinsicsFromBodyPosesAndBadCalibrationsNamed) {
   ASSERT_TRUE(depths);
   EXPECT_NEAR(depths->x(), 2.5, 1e-9);
   EXPECT_NEAR(depths->y(), p_C1.z(), 1e-9);
+
+  // Gyro prediction: the body's rotation between two frames seen from the camera.
+  const Eigen::Matrix3d R_W_B0 =
+      Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 0, 1).normalized()).matrix();
+  const Eigen::Matrix3d R_W_B1 =
+      Eigen::AngleAxisd(0.5, Eigen::Vector3d(0, 1, 1).normalized()).matrix();
+  const Eigen::Matrix3d R_C1_C0_expected =
+      (R_W_B1 * T_B_C0.linear()).transpose() * R_W_B0 * T_B_C0.linear();
+  EXPECT_LT((cameraRotation(R_W_B1.transpose() * R_W_B0, T_B_C0) - R_C1_C0_expected).norm(), 1e-12);
 
   rig.right.T_B_C = rig.left.T_B_C;
   EXPECT_THROW(
@@ -155,7 +165,8 @@ TEST(FrontendGeometry, HomographyCatchesMovingPointsWhenTheCameraStandsStill) {
   EXPECT_EQ(r.model, 'H');
   expectOutliersCaught(c, r);
   // Pure rotation with its prediction: parallax compensated to ~0, still 'H', still caught.
-  const Eigen::Matrix3d R = Eigen::AngleAxisd(0.08, Eigen::Vector3d(0.2, 1, 0).normalized()).matrix();
+  const Eigen::Matrix3d R =
+      Eigen::AngleAxisd(0.08, Eigen::Vector3d(0.2, 1, 0).normalized()).matrix();
   Eigen::Isometry3d T_rot = Eigen::Isometry3d::Identity();
   T_rot.linear() = R;
   const Correspondences cr = makeCorrespondences(T_rot, 0.1, focal, 13);
@@ -166,6 +177,52 @@ TEST(FrontendGeometry, HomographyCatchesMovingPointsWhenTheCameraStandsStill) {
   // A third of the points moving is more than H may reject: E takes over (and is told so).
   const Correspondences many = makeCorrespondences(Eigen::Isometry3d::Identity(), 0.33, focal, 17);
   EXPECT_EQ(rejectOutliers(many.prev, many.cur, std::nullopt, focal, {}).model, 'E');
+}
+
+// ---------------------------------------------------------------------------------------------
+// Keyframe policy
+
+std::vector<FeatureObservation> grid(int n, double shift_px, double focal, int first_id = 0) {
+  std::vector<FeatureObservation> features;
+  for (int i = 0; i < n; ++i) {
+    FeatureObservation f;
+    f.track_id = static_cast<std::uint64_t>(first_id + i);
+    f.xy_left_norm = Eigen::Vector2d(0.01 * (i % 10) - 0.05, 0.01 * (i / 10) - 0.05) +
+                     Eigen::Vector2d(shift_px / focal, 0.0);
+    features.push_back(f);
+  }
+  return features;
+}
+
+TEST(FrontendKeyframes, ParallaxTrackedShareIntervalAndLossEachMakeAKeyframe) {
+  const double focal = 460.0;
+  const std::int64_t ms = 1'000'000;
+  double parallax = 0.0;
+  KeyframePolicy policy(KeyframeConfig{});  // 10 px, 60 %, 0.5 s
+  EXPECT_TRUE(policy.decide(0, grid(100, 0, focal), std::nullopt, focal, false, &parallax));
+  EXPECT_FALSE(
+      policy.decide(50 * ms, grid(100, 9.0, focal), std::nullopt, focal, false, &parallax));
+  EXPECT_NEAR(parallax, 9.0, 1e-9);
+  EXPECT_TRUE(
+      policy.decide(100 * ms, grid(100, 10.5, focal), std::nullopt, focal, false, &parallax));
+  // 55 of the keyframe's 100 tracks left (plus new ones): below 60 %.
+  std::vector<FeatureObservation> some = grid(55, 10.5, focal);
+  for (const FeatureObservation& f : grid(45, 0, focal, 1000)) some.push_back(f);
+  EXPECT_TRUE(policy.decide(150 * ms, some, std::nullopt, focal, false, &parallax));
+  EXPECT_FALSE(policy.decide(600 * ms, some, std::nullopt, focal, false, &parallax));
+  EXPECT_TRUE(policy.decide(650 * ms, some, std::nullopt, focal, false, &parallax));  // 0.5 s
+  EXPECT_TRUE(policy.decide(700 * ms, some, std::nullopt, focal, true, &parallax));   // lost
+
+  // Turning on the spot with predictions: 20 px of flow, ~0 parallax, no keyframe.
+  KeyframePolicy turning(KeyframeConfig{});
+  std::vector<FeatureObservation> before = grid(100, 0, focal);
+  EXPECT_TRUE(turning.decide(0, before, std::nullopt, focal, false, &parallax));
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(20.0 / focal, Eigen::Vector3d::UnitY()).matrix();
+  for (FeatureObservation& f : before) {
+    f.xy_left_norm = (R * f.xy_left_norm.homogeneous()).hnormalized();
+  }
+  EXPECT_FALSE(turning.decide(50 * ms, before, R, focal, false, &parallax));
+  EXPECT_LT(parallax, 0.5);
 }
 
 }  // namespace

@@ -4,11 +4,12 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/SVD>
-#include <opencv2/imgcodecs.hpp>
-
 #include <algorithm>
+#include <cstdlib>
 #include <fstream>
 #include <map>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -32,15 +33,18 @@ constexpr double kFocal = 460.0, kBaseline = 0.11;
 sim::AnalyticRayScene makeRoom() {
   sim::AnalyticRayScene scene(2);
   using V = Eigen::Vector3d;
-  scene.add(sim::Plane{V(0, 0, 0), V(0, 0, 1), {150, 140, 130}});    // floor
-  scene.add(sim::Plane{V(0, 0, 3), V(0, 0, -1), {200, 200, 200}});   // ceiling
-  scene.add(sim::Plane{V(0, 4, 0), V(0, -1, 0), {180, 170, 160}});   // wall ahead
+  scene.add(sim::Plane{V(0, 0, 0), V(0, 0, 1), {150, 140, 130}});   // floor
+  scene.add(sim::Plane{V(0, 0, 3), V(0, 0, -1), {200, 200, 200}});  // ceiling
+  scene.add(sim::Plane{V(0, 4, 0), V(0, -1, 0), {180, 170, 160}});  // wall ahead
   scene.add(sim::Plane{V(0, -4, 0), V(0, 1, 0), {180, 170, 160}});
   scene.add(sim::Plane{V(3, 0, 0), V(-1, 0, 0), {160, 180, 170}});
   scene.add(sim::Plane{V(-3, 0, 0), V(1, 0, 0), {160, 180, 170}});
-  scene.add(sim::Box{V(-0.6, 1.5, 0.5), V(0.3, 0.3, 0.5), Eigen::Matrix3d::Identity(), {90, 110, 200}});
-  scene.add(sim::Box{V(0.9, 2.2, 1.2), V(0.4, 0.25, 0.3),
-                     Eigen::AngleAxisd(0.5, V::UnitZ()).matrix(), {210, 120, 90}});
+  scene.add(
+      sim::Box{V(-0.6, 1.5, 0.5), V(0.3, 0.3, 0.5), Eigen::Matrix3d::Identity(), {90, 110, 200}});
+  scene.add(sim::Box{V(0.9, 2.2, 1.2),
+                     V(0.4, 0.25, 0.3),
+                     Eigen::AngleAxisd(0.5, V::UnitZ()).matrix(),
+                     {210, 120, 90}});
   return scene;
 }
 
@@ -139,7 +143,8 @@ Eigen::Vector3d triangulate(const std::vector<std::pair<int, Eigen::Vector2d>>& 
     A.row(2 * i) = xy.x() * P.row(2) - P.row(0);
     A.row(2 * i + 1) = xy.y() * P.row(2) - P.row(1);
   }
-  const Eigen::Vector4d X = Eigen::JacobiSVD<Eigen::MatrixXd>(A, Eigen::ComputeFullV).matrixV().col(3);
+  const Eigen::Vector4d X =
+      Eigen::JacobiSVD<Eigen::MatrixXd>(A, Eigen::ComputeFullV).matrixV().col(3);
   return X.hnormalized();
 }
 
@@ -153,23 +158,49 @@ struct TruthScore {
   int rejected_geometry = 0, min_tracked = 1 << 30;
 
   double outlierShare(const std::vector<double>& errors, double bound_px) const {
-    const auto n = std::count_if(errors.begin(), errors.end(), [&](double e) { return e > bound_px; });
+    const auto n =
+        std::count_if(errors.begin(), errors.end(), [&](double e) { return e > bound_px; });
     return errors.empty() ? 1.0 : static_cast<double>(n) / errors.size();
   }
 };
 
+// The figure of docs/odometry.md: the last left image with each live track's trail (green:
+// stereo-matched now, red: left only), written where STRATA_TEST_OUTPUT points.
+void writeTrackFigure(const std::string& name, const cv::Mat& image,
+                      const std::vector<FeatureObservation>& features,
+                      const std::map<std::uint64_t, std::vector<Eigen::Vector2d>>& trails) {
+  const char* dir = std::getenv("STRATA_TEST_OUTPUT");
+  if (dir == nullptr) return;
+  cv::Mat figure;
+  cv::cvtColor(image, figure, cv::COLOR_GRAY2BGR);
+  const auto point = [](const Eigen::Vector2d& p) {
+    return cv::Point(cvRound(p.x()), cvRound(p.y()));
+  };
+  for (const FeatureObservation& f : features) {
+    const cv::Scalar colour = f.uv_right_px ? cv::Scalar(40, 220, 40) : cv::Scalar(40, 40, 230);
+    const std::vector<Eigen::Vector2d>& trail = trails.at(f.track_id);
+    for (std::size_t i = 1; i < trail.size(); ++i) {
+      cv::line(figure, point(trail[i - 1]), point(trail[i]), colour, 1, cv::LINE_AA);
+    }
+    cv::circle(figure, point(f.uv_left_px), 3, colour, 1, cv::LINE_AA);
+  }
+  cv::imwrite(std::string(dir) + "/" + name, figure);
+}
+
 TruthScore runAndScore(const std::vector<cv::Mat>& left, const std::vector<cv::Mat>& right,
-                       bool predict_rotation) {
+                       bool predict_rotation, const std::string& figure = "") {
   const SimSequence& seq = simSequence();
   FeatureTracker tracker(simRig(), FrontendConfig{});
   std::map<std::uint64_t, std::vector<std::pair<int, Eigen::Vector2d>>> tracks;
   TruthScore score;
+  std::vector<FeatureObservation> last_features;
   for (int k = 0; k < kFrames; ++k) {
     std::optional<Eigen::Matrix3d> R_Ck_Ckm1;
     if (predict_rotation && k > 0) {
       R_Ck_Ckm1 = leftPose(k).linear().transpose() * leftPose(k - 1).linear();
     }
     const FrameFeatures frame = tracker.process(stamp(k), left[k], right[k], R_Ck_Ckm1);
+    last_features = frame.features;
     score.lost_frames += frame.stats.lost;
     score.keyframes += frame.is_keyframe;
     score.rejected_geometry += frame.stats.rejected_geometry;
@@ -187,6 +218,13 @@ TruthScore runAndScore(const std::vector<cv::Mat>& left, const std::vector<cv::M
       const Eigen::Vector2d expected = f.uv_left_px - Eigen::Vector2d(kFocal * kBaseline / z, 0);
       score.stereo_error_px.push_back((*f.uv_right_px - expected).norm());
     }
+  }
+  if (!figure.empty()) {
+    std::map<std::uint64_t, std::vector<Eigen::Vector2d>> trails;
+    for (const auto& [id, track] : tracks) {
+      for (const auto& obs : track) trails[id].push_back(obs.second);
+    }
+    writeTrackFigure(figure, left.back(), last_features, trails);
   }
   for (const auto& [id, track] : tracks) {
     if (track.size() < 3) continue;
@@ -216,10 +254,12 @@ TEST(FrontendTracking, SimTracksFollowTheirTrue3dPointsAndStereoHasTheTrueDispar
     // ~36 px of parallax over the run: keyframes beyond the first, not every frame.
     EXPECT_GE(s.keyframes, 2);
     EXPECT_LT(s.keyframes, kFrames / 2);
-    std::printf("predict %d: median track error %.3f px, >2 px %.2f %%, median stereo error "
-                "%.3f px, stereo matched %.0f %%, keyframes %d, appearance rej %d geo rej %d\n",
-                predict, median(s.track_error_px), 100 * s.outlierShare(s.track_error_px, 2.0),
-                median(s.stereo_error_px), 100.0 * s.stereo_matched / s.features, s.keyframes, s.rejected_appearance, s.rejected_geometry);
+    std::printf(
+        "predict %d: median track error %.3f px, >2 px %.2f %%, median stereo error "
+        "%.3f px, stereo matched %.0f %%, keyframes %d, appearance rej %d geo rej %d\n",
+        predict, median(s.track_error_px), 100 * s.outlierShare(s.track_error_px, 2.0),
+        median(s.stereo_error_px), 100.0 * s.stereo_matched / s.features, s.keyframes,
+        s.rejected_appearance, s.rejected_geometry);
   }
 }
 
@@ -234,7 +274,7 @@ TEST(FrontendTracking, PatchMovingAgainstTheSceneIsRejectedGeometrically) {
     seq.left[0](source).copyTo(left.back()(cv::Rect(380, 150 + 4 * k, 90, 90)));
   }
   const TruthScore clean = runAndScore(seq.left, seq.right, false);
-  const TruthScore s = runAndScore(left, seq.right, false);
+  const TruthScore s = runAndScore(left, seq.right, false, "frontend_sim_patch.png");
   EXPECT_EQ(s.lost_frames, 0);
   EXPECT_LT(s.outlierShare(s.track_error_px, 2.0), 0.03);
   EXPECT_LT(median(s.track_error_px), 0.5);
@@ -332,7 +372,8 @@ std::vector<std::pair<std::int64_t, std::string>> readEurocImages(const std::str
 
 TEST(FrontendTracking, EurocStillVehicleKeepsItsTracksAndMatchesStereo) {
   STRATA_REQUIRE_DATA("euroc_v101_micro/mav0", mav0);
-  StereoCamera rig{readEurocCamera(mav0 + "/cam0", "cam0"), readEurocCamera(mav0 + "/cam1", "cam1")};
+  StereoCamera rig{readEurocCamera(mav0 + "/cam0", "cam0"),
+                   readEurocCamera(mav0 + "/cam1", "cam1")};
   EXPECT_NEAR(rig.baseline_m(), 0.110, 0.002);  // the VI-sensor's published baseline
   const auto left = readEurocImages(mav0 + "/cam0");
   std::map<std::int64_t, std::string> right;  // cam1 lists a few more images than cam0
@@ -342,6 +383,9 @@ TEST(FrontendTracking, EurocStillVehicleKeepsItsTracksAndMatchesStereo) {
   std::vector<double> flow, time_ms;
   int keyframes = 0, min_tracked = 1 << 30, min_stereo = 1 << 30, lost = 0;
   std::map<std::uint64_t, int> lengths;
+  std::map<std::uint64_t, std::vector<Eigen::Vector2d>> trails;
+  cv::Mat last_image;
+  std::vector<FeatureObservation> last_features;
   std::map<std::uint64_t, Eigen::Vector2d> first_uv;  // tracks of frame 0
   std::vector<double> drift_px, stereo_share;
   for (int k = 0; k < 30; ++k) {
@@ -358,12 +402,17 @@ TEST(FrontendTracking, EurocStillVehicleKeepsItsTracksAndMatchesStereo) {
       time_ms.push_back(frame.stats.process_time_ms);
     }
     stereo_share.push_back(static_cast<double>(frame.stats.stereo_matched) / frame.features.size());
+    last_image = l;
+    last_features = frame.features;
     for (const FeatureObservation& f : frame.features) {
+      trails[f.track_id].push_back(f.uv_left_px);
       lengths[f.track_id] = f.track_length;
       if (k == 0) first_uv[f.track_id] = f.uv_left_px;
-      if (k == 29 && f.track_length == 30) drift_px.push_back((f.uv_left_px - first_uv[f.track_id]).norm());
+      if (k == 29 && f.track_length == 30)
+        drift_px.push_back((f.uv_left_px - first_uv[f.track_id]).norm());
     }
   }
+  writeTrackFigure("frontend_euroc.png", last_image, last_features, trails);
   EXPECT_EQ(lost, 0);
   EXPECT_GT(min_tracked, 150);  // of the 180 targeted
   // The lower image is carpet (little texture) that the vehicle's body hides from cam1.
@@ -372,15 +421,16 @@ TEST(FrontendTracking, EurocStillVehicleKeepsItsTracksAndMatchesStereo) {
   EXPECT_LT(median(flow), 0.3);
   EXPECT_LT(median(drift_px), 0.5);
   EXPECT_GT(median(stereo_share), 0.4);
-  EXPECT_LE(keyframes, 4);       // only the 0.5 s interval rule fires over 1.5 s
+  EXPECT_LE(keyframes, 4);  // only the 0.5 s interval rule fires over 1.5 s
   const int full_length = static_cast<int>(std::count_if(
       lengths.begin(), lengths.end(), [](const auto& kv) { return kv.second == 30; }));
   EXPECT_GT(full_length, 100);  // tracks that lived through all 30 frames
-  std::printf("EuRoC: min tracked %d, min stereo %d, median stereo share %.2f, median flow %.3f px, "
-              "median drift over 30 frames %.3f px, %d keyframes, %d full tracks, median %.1f ms "
-              "per stereo frame\n",
-              min_tracked, min_stereo, median(stereo_share), median(flow), median(drift_px),
-              keyframes, full_length, median(time_ms));
+  std::printf(
+      "EuRoC: min tracked %d, min stereo %d, median stereo share %.2f, median flow %.3f px, "
+      "median drift over 30 frames %.3f px, %d keyframes, %d full tracks, median %.1f ms "
+      "per stereo frame\n",
+      min_tracked, min_stereo, median(stereo_share), median(flow), median(drift_px), keyframes,
+      full_length, median(time_ms));
 }
 
 }  // namespace

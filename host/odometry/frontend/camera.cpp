@@ -93,8 +93,8 @@ void Camera::validate() const {
     if (!std::isfinite(k)) fail("distortion coefficients must be finite");
   }
   const Eigen::Matrix3d R = T_B_C.linear();
-  if (!T_B_C.matrix().allFinite() || (R.transpose() * R - Eigen::Matrix3d::Identity()).norm() > 1e-6 ||
-      R.determinant() < 0.0) {
+  if (!T_B_C.matrix().allFinite() ||
+      (R.transpose() * R - Eigen::Matrix3d::Identity()).norm() > 1e-6 || R.determinant() < 0.0) {
     fail("T_B_C rotation is not a rotation matrix (orthonormal, det +1 within 1e-6)");
   }
 }

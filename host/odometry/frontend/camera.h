@@ -66,4 +66,11 @@ struct StereoCamera {
   void validate() const;
 };
 
+/// The camera's rotation between two frames from the body's (IMU preintegration gives
+/// R_Bk_Bkm1): R_Ck_Ckm1 = R_C_B R_Bk_Bkm1 R_B_C, the prediction FeatureTracker::process takes.
+inline Eigen::Matrix3d cameraRotation(const Eigen::Matrix3d& R_Bk_Bkm1,
+                                      const Eigen::Isometry3d& T_B_C) {
+  return T_B_C.linear().transpose() * R_Bk_Bkm1 * T_B_C.linear();
+}
+
 }  // namespace strata::odometry

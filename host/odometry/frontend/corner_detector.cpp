@@ -1,10 +1,9 @@
 #include "odometry/frontend/corner_detector.h"
 
-#include <opencv2/features2d.hpp>
-#include <opencv2/imgproc.hpp>
-
 #include <algorithm>
 #include <cmath>
+#include <opencv2/features2d.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "core/error.h"
 
@@ -12,10 +11,10 @@ namespace strata::odometry {
 namespace {
 
 int cellOf(const cv::Point2f& p, cv::Size size, const DetectorConfig& config) {
-  const int col = std::clamp(static_cast<int>(p.x * config.grid_cols / size.width), 0,
-                             config.grid_cols - 1);
-  const int row = std::clamp(static_cast<int>(p.y * config.grid_rows / size.height), 0,
-                             config.grid_rows - 1);
+  const int col =
+      std::clamp(static_cast<int>(p.x * config.grid_cols / size.width), 0, config.grid_cols - 1);
+  const int row =
+      std::clamp(static_cast<int>(p.y * config.grid_rows / size.height), 0, config.grid_rows - 1);
   return row * config.grid_cols + col;
 }
 
@@ -79,8 +78,8 @@ struct Candidate {
 };
 
 // FAST corners inside the free mask, scored and sorted strongest first, floored by quality.
-std::vector<Candidate> scoredCandidates(const cv::Mat& image, const cv::Mat& free,
-                                        int threshold, const DetectorConfig& config) {
+std::vector<Candidate> scoredCandidates(const cv::Mat& image, const cv::Mat& free, int threshold,
+                                        const DetectorConfig& config) {
   std::vector<cv::KeyPoint> keypoints;
   cv::FAST(image, keypoints, threshold, true);
   std::vector<Candidate> candidates;
@@ -135,8 +134,7 @@ std::vector<cv::Point2f> detectCorners(const cv::Mat& image,
         ++count;
         taken[i] = true;
         chosen.push_back(p);
-        cv::circle(free, cv::Point(cvRound(p.x), cvRound(p.y)), radius, cv::Scalar(0),
-                   cv::FILLED);
+        cv::circle(free, cv::Point(cvRound(p.x), cvRound(p.y)), radius, cv::Scalar(0), cv::FILLED);
       }
     }
   }

@@ -11,14 +11,14 @@
 namespace strata::odometry {
 
 struct DetectorConfig {
-  int target_features = 180;     // tracks the front end keeps alive; more = slower, more robust
-  double min_distance_px = 20.0; // between any two features (new or tracked)
-  int fast_threshold = 20;       // FAST intensity step; a second round at half where it falls short
-  double quality_level = 0.01;   // Shi-Tomasi score floor: fraction of the strongest candidate's
-  int score_window_px = 7;       // side of the structure tensor window of the score
-  int grid_cols = 8;             // the image is split into grid_cols x grid_rows cells with an
-  int grid_rows = 5;             //   equal quota each
-  int border_px = 8;             // no corners this close to the edge (KLT window support)
+  int target_features = 180;      // tracks the front end keeps alive; more = slower, more robust
+  double min_distance_px = 20.0;  // between any two features (new or tracked)
+  int fast_threshold = 20;      // FAST intensity step; a second round at half where it falls short
+  double quality_level = 0.01;  // Shi-Tomasi score floor: fraction of the strongest candidate's
+  int score_window_px = 7;      // side of the structure tensor window of the score
+  int grid_cols = 8;            // the image is split into grid_cols x grid_rows cells with an
+  int grid_rows = 5;            //   equal quota each
+  int border_px = 8;            // no corners this close to the edge (KLT window support)
 
   /// Throws InputError naming the bad field.
   void validate() const;

@@ -10,14 +10,22 @@ namespace {
 
 const char* depthName(int depth) {
   switch (depth) {
-    case CV_8U: return "8-bit unsigned";
-    case CV_8S: return "8-bit signed";
-    case CV_16U: return "16-bit unsigned";
-    case CV_16S: return "16-bit signed";
-    case CV_32S: return "32-bit integer";
-    case CV_32F: return "32-bit float";
-    case CV_64F: return "64-bit float";
-    default: return "unknown depth";
+    case CV_8U:
+      return "8-bit unsigned";
+    case CV_8S:
+      return "8-bit signed";
+    case CV_16U:
+      return "16-bit unsigned";
+    case CV_16S:
+      return "16-bit signed";
+    case CV_32S:
+      return "32-bit integer";
+    case CV_32F:
+      return "32-bit float";
+    case CV_64F:
+      return "64-bit float";
+    default:
+      return "unknown depth";
   }
 }
 
@@ -111,7 +119,8 @@ void FeatureTracker::trackPrevious(const std::vector<cv::Mat>& pyramid,
     if (status[i] == KltStatus::kFwdBwd) ++stats->rejected_fwd_bwd;
     if (status[i] != KltStatus::kOk) continue;
     if (config_.min_appearance_ncc > 0.0 &&
-        patchNcc(tracks_[i].patch, normalizedPatch(pyramid[0], to[i], config_.appearance_patch_px)) <
+        patchNcc(tracks_[i].patch,
+                 normalizedPatch(pyramid[0], to[i], config_.appearance_patch_px)) <
             config_.min_appearance_ncc) {
       ++stats->rejected_appearance;
       continue;

@@ -4,9 +4,9 @@
 // forward-backward check, reject geometric outliers (geometric_check.h), detect new corners where
 // tracks are sparse (corner_detector.h), match every feature into the right image
 // (stereo_matcher.h), and decide keyframes (keyframe_policy.h). See docs/odometry.md "Front end".
-#include <opencv2/core.hpp>
 #include <chrono>
 #include <cstdint>
+#include <opencv2/core.hpp>
 #include <optional>
 #include <vector>
 

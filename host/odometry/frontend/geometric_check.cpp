@@ -1,9 +1,8 @@
 #include "odometry/frontend/geometric_check.h"
 
-#include <opencv2/calib3d.hpp>
-
 #include <algorithm>
 #include <cmath>
+#include <opencv2/calib3d.hpp>
 
 #include "core/error.h"
 

@@ -22,8 +22,8 @@ struct GeometricCheckConfig {
   double ransac_threshold_px = 1.0;  // inlier bound; lower drops more good tracks on noisy images
   double confidence = 0.999;         // RANSAC: probability of drawing one all-inlier sample
   double homography_below_parallax_px = 1.5;  // median parallax under which H is tried first
-  double max_homography_reject_share = 0.15;   // H rejecting more: translation, use E
-  int min_correspondences = 10;      // fewer: no check (everything is kept, model '-')
+  double max_homography_reject_share = 0.15;  // H rejecting more: translation, use E
+  int min_correspondences = 10;               // fewer: no check (everything is kept, model '-')
 
   /// Throws InputError naming the bad field.
   void validate() const;

@@ -29,8 +29,8 @@ bool KeyframePolicy::decide(std::int64_t timestamp_ns,
   for (const FeatureObservation& f : features) {
     const auto it = reference_xy_.find(f.track_id);
     if (it == reference_xy_.end()) continue;
-    parallax_sum += rotationCompensatedParallaxPx(it->second, f.xy_left_norm, R_cur_keyframe_,
-                                                  focal_px);
+    parallax_sum +=
+        rotationCompensatedParallaxPx(it->second, f.xy_left_norm, R_cur_keyframe_, focal_px);
     ++shared;
   }
   const double parallax = shared > 0 ? parallax_sum / shared : 0.0;

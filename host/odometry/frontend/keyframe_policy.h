@@ -17,9 +17,9 @@
 namespace strata::odometry {
 
 struct KeyframeConfig {
-  double min_parallax_px = 10.0;       // lower: more keyframes, weaker triangulation each
-  double min_tracked_fraction = 0.6;   // of the last keyframe's features
-  double max_interval_s = 0.5;         // longest gap between keyframes
+  double min_parallax_px = 10.0;      // lower: more keyframes, weaker triangulation each
+  double min_tracked_fraction = 0.6;  // of the last keyframe's features
+  double max_interval_s = 0.5;        // longest gap between keyframes
 
   /// Throws InputError naming the bad field.
   void validate() const;

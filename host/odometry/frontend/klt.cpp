@@ -20,7 +20,8 @@ cv::TermCriteria criteria(const KltConfig& config) {
 }  // namespace
 
 void KltConfig::validate() const {
-  if (window_px < 5 || window_px % 2 == 0) throw InputError("KltConfig: window_px must be odd, >= 5");
+  if (window_px < 5 || window_px % 2 == 0)
+    throw InputError("KltConfig: window_px must be odd, >= 5");
   if (pyramid_levels < 0 || pyramid_levels > 6) {
     throw InputError("KltConfig: pyramid_levels must be in [0, 6]");
   }

@@ -2,18 +2,18 @@
 // Pyramidal Lucas-Kanade tracking with a forward-backward check (Kalonia et al., "Forward-backward
 // error", ICPR 2010): a point is kept only if tracking it back lands within fwd_bwd_max_px of
 // where it started, which drops drifting points at occlusions and on repetitive texture.
-#include <opencv2/core.hpp>
 #include <cstdint>
+#include <opencv2/core.hpp>
 #include <vector>
 
 namespace strata::odometry {
 
 struct KltConfig {
-  int window_px = 15;       // LK window side; larger follows bigger motion, costs quadratically
-  int pyramid_levels = 3;   // levels above the base; each doubles the capture range
-  int max_iterations = 30;  // per level
-  double epsilon_px = 0.01;      // LK stops when the update is below this
-  double fwd_bwd_max_px = 0.5;   // forward-backward round trip error bound
+  int window_px = 15;           // LK window side; larger follows bigger motion, costs quadratically
+  int pyramid_levels = 3;       // levels above the base; each doubles the capture range
+  int max_iterations = 30;      // per level
+  double epsilon_px = 0.01;     // LK stops when the update is below this
+  double fwd_bwd_max_px = 0.5;  // forward-backward round trip error bound
 
   /// Throws InputError naming the bad field.
   void validate() const;

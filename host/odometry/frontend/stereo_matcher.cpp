@@ -44,8 +44,8 @@ std::vector<std::optional<StereoMatch>> matchStereo(
     const std::vector<cv::Mat>& pyramid_left, const std::vector<cv::Mat>& pyramid_right,
     const StereoCamera& camera, const std::vector<Eigen::Vector2d>& uv_left_px,
     const std::vector<Eigen::Vector2d>& xy_left_norm,
-    const std::vector<std::optional<Eigen::Vector2d>>& guess_right_px,
-    const KltConfig& klt, double border_px, const StereoMatchConfig& config) {
+    const std::vector<std::optional<Eigen::Vector2d>>& guess_right_px, const KltConfig& klt,
+    double border_px, const StereoMatchConfig& config) {
   const std::size_t n = uv_left_px.size();
   std::vector<std::optional<StereoMatch>> matches(n);
   const Eigen::Isometry3d T_C1_C0 = camera.T_C0_C1().inverse();

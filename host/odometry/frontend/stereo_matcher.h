@@ -1,8 +1,9 @@
 #pragma once
 // Left-to-right stereo matching by KLT: each left feature is tracked into the right image from a
 // guess (its last right position moved by its left motion, else the projection at
-// init_depth_m; those missed are tried again from retry_depth_m), checked forward-backward, against the epipolar line of the calibrated pair
-// (for a rectified pair: the same row) and against depth bounds by triangulation.
+// init_depth_m; those missed are tried again from retry_depth_m), checked forward-backward, against
+// the epipolar line of the calibrated pair (for a rectified pair: the same row) and against depth
+// bounds by triangulation.
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 #include <optional>
@@ -45,7 +46,7 @@ std::vector<std::optional<StereoMatch>> matchStereo(
     const std::vector<cv::Mat>& pyramid_left, const std::vector<cv::Mat>& pyramid_right,
     const StereoCamera& camera, const std::vector<Eigen::Vector2d>& uv_left_px,
     const std::vector<Eigen::Vector2d>& xy_left_norm,
-    const std::vector<std::optional<Eigen::Vector2d>>& guess_right_px,
-    const KltConfig& klt, double border_px, const StereoMatchConfig& config);
+    const std::vector<std::optional<Eigen::Vector2d>>& guess_right_px, const KltConfig& klt,
+    double border_px, const StereoMatchConfig& config);
 
 }  // namespace strata::odometry
