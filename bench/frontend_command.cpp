@@ -10,6 +10,7 @@
 #include <map>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <sstream>
 
 #include "core/error.h"
 #include "json.h"
@@ -150,12 +151,87 @@ Json benchSim(int frames) {
   return summary("sim_room_752x480", series);
 }
 
+// EuRoC: NOTE a minimal local parse of sensor.yaml and data.csv (as test_frontend_tracking's),
+// until the project's EuRoC reader lands.
+std::vector<double> yamlList(const std::string& text, const std::string& key) {
+  const std::size_t at = text.find(key + ":");
+  if (at == std::string::npos) throw InputError("sensor.yaml: no key '" + key + "'");
+  const std::size_t open = text.find('[', at), close = text.find(']', open);
+  std::string list = text.substr(open + 1, close - open - 1);
+  std::replace(list.begin(), list.end(), ',', ' ');
+  std::istringstream in(list);
+  std::vector<double> values;
+  for (double v; in >> v;) values.push_back(v);
+  return values;
+}
+
+odometry::Camera eurocCamera(const std::string& folder) {
+  std::ifstream file(folder + "/sensor.yaml");
+  std::stringstream text;
+  text << file.rdbuf();
+  const std::string yaml = text.str();
+  const std::vector<double> size = yamlList(yaml, "resolution"), k = yamlList(yaml, "intrinsics");
+  const std::vector<double> d = yamlList(yaml, "distortion_coefficients");
+  const std::vector<double> T = yamlList(yaml.substr(yaml.find("T_BS")), "data");
+  if (size.size() != 2 || k.size() != 4 || d.size() != 4 || T.size() != 16) {
+    throw InputError(folder + "/sensor.yaml: unexpected list lengths");
+  }
+  odometry::Camera c;
+  c.name = folder;
+  c.width_px = static_cast<int>(size[0]);
+  c.height_px = static_cast<int>(size[1]);
+  c.fx_px = k[0], c.fy_px = k[1], c.cx_px = k[2], c.cy_px = k[3];
+  c.distortion = odometry::DistortionModel::kRadialTangential;
+  c.coefficients = {d[0], d[1], d[2], d[3]};
+  c.T_B_C.matrix() = Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(T.data());
+  return c;
+}
+
+std::map<std::int64_t, std::string> eurocImages(const std::string& folder) {
+  std::ifstream csv(folder + "/data.csv");
+  std::map<std::int64_t, std::string> images;
+  for (std::string line; std::getline(csv, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    const std::size_t comma = line.find(',');
+    std::string name = line.substr(comma + 1);
+    name.erase(std::remove_if(name.begin(), name.end(), ::isspace), name.end());
+    images[std::stoll(line.substr(0, comma))] = folder + "/data/" + name;
+  }
+  return images;
+}
+
+Json benchEuroc(const std::string& mav0) {
+  odometry::StereoCamera rig{eurocCamera(mav0 + "/cam0"), eurocCamera(mav0 + "/cam1")};
+  const auto left = eurocImages(mav0 + "/cam0"), right = eurocImages(mav0 + "/cam1");
+  std::vector<std::pair<std::int64_t, std::pair<cv::Mat, cv::Mat>>> frames;  // decoded first
+  for (const auto& [t, path] : left) {
+    const auto r = right.find(t);
+    if (r == right.end()) continue;
+    frames.push_back(
+        {t, {cv::imread(path, cv::IMREAD_UNCHANGED), cv::imread(r->second, cv::IMREAD_UNCHANGED)}});
+  }
+  if (frames.size() < 2) throw InputError(mav0 + ": fewer than 2 stereo pairs");
+  odometry::FeatureTracker tracker(rig, odometry::FrontendConfig{});
+  Series series;
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    const double cpu_start = processCpuMs();
+    const FrameFeatures f =
+        tracker.process(frames[k].first, frames[k].second.first, frames[k].second.second);
+    if (k > 0) {
+      series.cpu.push_back(processCpuMs() - cpu_start);
+      series.add(f);
+    }
+  }
+  return summary("euroc_v101_micro", series);
+}
+
 }  // namespace
 
 CLI::App* addFrontendCommand(CLI::App& app, FrontendBenchOptions& o) {
   CLI::App* c = app.add_subcommand("frontend", "Visual front end: ms per stereo frame");
   c->add_option("--frames", o.frames, "Simulated stereo frames timed")->capture_default_str();
   c->add_option("--threads", o.threads, "OpenCV threads")->capture_default_str();
+  c->add_option("--euroc", o.euroc_mav0, "EuRoC mav0 folder (default: the shared excerpt)");
   c->add_option("--out", o.out_path, "Also write the JSON here");
   return c;
 }
@@ -166,6 +242,15 @@ int runFrontendBench(const FrontendBenchOptions& o) {
     cv::setNumThreads(o.threads);
     Json results = Json::array();
     results.push(benchSim(o.frames));
+    const std::string mav0 = o.euroc_mav0.empty()
+                                 ? std::string(STRATA_SHARED_DATA_DIR) + "/euroc_v101_micro/mav0"
+                                 : o.euroc_mav0;
+    if (std::filesystem::is_directory(mav0)) {
+      results.push(benchEuroc(mav0));
+    } else {
+      std::fprintf(stderr, "strata-bench frontend: no EuRoC excerpt at %s, skipped\n",
+                   mav0.c_str());
+    }
     Json report = Json::object()
                       .set("benchmark", "frontend")
                       .set("machine", machineInfo("host CPU (OpenCV KLT)", load_at_start))

@@ -175,13 +175,15 @@ void FeatureTracker::matchRight(const std::vector<cv::Mat>& pyramid_left, const 
   const std::vector<cv::Mat> pyramid_right = buildPyramid(adjusted, config_.klt);
   std::vector<Eigen::Vector2d> uv, xy;
   std::vector<std::optional<Eigen::Vector2d>> guess;
+  std::vector<bool> retry_near;
   for (const Track& t : tracks_) {
     uv.push_back(toEigen(t.uv_px));
     xy.push_back(t.xy_norm);
     guess.push_back(t.uv_right_px);
+    retry_near.push_back(t.length == 1);
   }
-  *matches = matchStereo(pyramid_left, pyramid_right, camera_, uv, xy, guess, config_.klt,
-                         config_.border_px, config_.stereo);
+  *matches = matchStereo(pyramid_left, pyramid_right, camera_, uv, xy, guess, retry_near,
+                         config_.klt, config_.border_px, config_.stereo);
   for (std::size_t i = 0; i < tracks_.size(); ++i) {
     const std::optional<StereoMatch>& m = (*matches)[i];
     tracks_[i].uv_right_px = m ? std::optional<Eigen::Vector2d>(m->uv_right_px) : std::nullopt;

@@ -44,8 +44,9 @@ std::vector<std::optional<StereoMatch>> matchStereo(
     const std::vector<cv::Mat>& pyramid_left, const std::vector<cv::Mat>& pyramid_right,
     const StereoCamera& camera, const std::vector<Eigen::Vector2d>& uv_left_px,
     const std::vector<Eigen::Vector2d>& xy_left_norm,
-    const std::vector<std::optional<Eigen::Vector2d>>& guess_right_px, const KltConfig& klt,
-    double border_px, const StereoMatchConfig& config) {
+    const std::vector<std::optional<Eigen::Vector2d>>& guess_right_px,
+    const std::vector<bool>& retry_near, const KltConfig& klt, double border_px,
+    const StereoMatchConfig& config) {
   const std::size_t n = uv_left_px.size();
   std::vector<std::optional<StereoMatch>> matches(n);
   const Eigen::Isometry3d T_C1_C0 = camera.T_C0_C1().inverse();
@@ -97,7 +98,7 @@ std::vector<std::optional<StereoMatch>> matchStereo(
     std::vector<std::size_t> retry;
     std::vector<Eigen::Vector2d> near_guesses;
     for (std::size_t i = 0; i < n; ++i) {
-      if (matches[i]) continue;
+      if (matches[i] || !retry_near[i]) continue;
       retry.push_back(i);
       near_guesses.push_back(projectionGuess(i, config.retry_depth_m));
     }
