@@ -41,7 +41,9 @@ struct FrontendConfig {
   void validate() const;
 };
 
-/// Not thread safe: one tracker per camera rig, frames in time order.
+/// Not thread safe: one tracker per camera rig, frames in time order. OpenCV's KLT runs on
+/// cv::getNumThreads() threads; the caller sets cv::setNumThreads (one thread: ~9-10 ms per
+/// 752x480 stereo frame with 180 tracks, docs/odometry.md).
 class FeatureTracker {
  public:
   /// Mono: only the left camera is used. Throws InputError for a bad camera or config.
@@ -51,8 +53,9 @@ class FeatureTracker {
 
   /// Processes one frame. `left` (and `right` for a stereo tracker; ignored for mono) must be
   /// non-empty single-channel 8-bit images of the calibrated size, else InputError naming the
-  /// eye and the problem. `R_Ck_Ckm1` (optional): rotation from the previous left-camera frame to
-  /// this one (e.g. from IMU preintegration); it initialises KLT and compensates parallax.
+  /// eye and the problem. `R_Ck_Ckm1` (optional): the left camera's rotation between the frames,
+  /// p_Ck = R_Ck_Ckm1 p_Ckm1 for a direction (cameraRotation() makes it from the IMU's R_Bk_Bkm1);
+  /// it initialises KLT at the infinite-depth prediction and compensates parallax.
   /// Timestamps must increase (InputError otherwise).
   FrameFeatures process(std::int64_t timestamp_ns, const cv::Mat& left, const cv::Mat& right,
                         const std::optional<Eigen::Matrix3d>& R_Ck_Ckm1 = std::nullopt);
