@@ -144,7 +144,7 @@ TEST(VioEstimator, TracksWithTheLeftCameraAlone) {
   synthetic::Scenario s = synthetic::makeScenario(biasedScenario());
   s.rig.right.reset();
   for (FrameObservations& frame : s.frames) {
-    for (FeatureObservation& o : frame.features) o.uv_right.reset();
+    for (FeatureObservation& o : frame.features) o.uv_right_px.reset(), o.xy_right_norm.reset();
   }
   const EstimatorRun run =
       runEstimator(s, 0, deterministicConfig(), [](std::size_t, FrameObservations*) {});

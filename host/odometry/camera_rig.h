@@ -17,6 +17,10 @@ struct PinholeIntrinsics {
   Eigen::Vector2d project(const Eigen::Vector3d& p_C) const {
     return {fx_px * p_C.x() / p_C.z() + cx_px, fy_px * p_C.y() / p_C.z() + cy_px};
   }
+  /// Pixel of the normalized coordinates (x / z, y / z).
+  Eigen::Vector2d toPixel(const Eigen::Vector2d& xy) const {
+    return {fx_px * xy.x() + cx_px, fy_px * xy.y() + cy_px};
+  }
   /// Ray through pixel uv with z = 1.
   Eigen::Vector3d unproject(const Eigen::Vector2d& uv) const {
     return {(uv.x() - cx_px) / fx_px, (uv.y() - cy_px) / fy_px, 1.0};

@@ -348,11 +348,15 @@ bool VioEstimator::Impl::featuresStill(const FrameObservations& frame) const {
     return false;
   }
   std::unordered_map<std::uint64_t, Eigen::Vector2d> before;
-  for (const FeatureObservation& o : recent_frames.front().features) before[o.track_id] = o.uv_left;
+  for (const FeatureObservation& o : recent_frames.front().features) {
+    before[o.track_id] = rig.left.toPixel(o.xy_left_norm);
+  }
   std::vector<double> motion_px;
   for (const FeatureObservation& o : frame.features) {
     const auto it = before.find(o.track_id);
-    if (it != before.end()) motion_px.push_back((o.uv_left - it->second).norm());
+    if (it != before.end()) {
+      motion_px.push_back((rig.left.toPixel(o.xy_left_norm) - it->second).norm());
+    }
   }
   // Too few common tracks to tell: the IMU's verdict stands.
   if (static_cast<int>(motion_px.size()) < config.min_observations) return true;

@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "odometry/camera_rig.h"
-#include "odometry/feature_observation.h"
+#include "odometry/frame_observations.h"
 #include "odometry/imu_types.h"
 #include "odometry/initialization.h"
 

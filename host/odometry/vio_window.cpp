@@ -50,15 +50,17 @@ Eigen::Isometry3d Window::T_W_C(std::int64_t keyframe_id, bool right) const {
 
 void Window::addObservations(std::int64_t id, const std::vector<FeatureObservation>& features) {
   for (const FeatureObservation& f : features) {
-    std::optional<Eigen::Vector2d> right = rig_.right ? f.uv_right : std::nullopt;
+    const Eigen::Vector2d uv_left = rig_.left.toPixel(f.xy_left_norm);
+    std::optional<Eigen::Vector2d> right;
+    if (rig_.right && f.xy_right_norm) right = rig_.right->toPixel(*f.xy_right_norm);
     auto it = landmarks.find(f.track_id);
     if (it == landmarks.end()) {
       Landmark l;
       l.anchor_id = id;
-      l.bearing = rig_.left.unproject(f.uv_left);
+      l.bearing = rig_.left.unproject(uv_left);
       it = landmarks.emplace(f.track_id, l).first;
     }
-    it->second.observations.push_back({id, f.uv_left, right});
+    it->second.observations.push_back({id, uv_left, right});
   }
 }
 

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "odometry/camera_rig.h"
-#include "odometry/feature_observation.h"
+#include "odometry/frame_observations.h"
 #include "odometry/marginalization.h"
 #include "odometry/preintegration.h"
 #include "odometry/state_parameters.h"
@@ -37,7 +37,7 @@ struct Keyframe {
 
 struct Observation {
   std::int64_t keyframe_id = 0;
-  Eigen::Vector2d uv_left;
+  Eigen::Vector2d uv_left;  // pixels of the rig's pinhole model (undistorted)
   std::optional<Eigen::Vector2d> uv_right;
 };
 

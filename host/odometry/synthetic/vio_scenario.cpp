@@ -119,11 +119,15 @@ Scenario makeScenario(const ScenarioConfig& c) {
       if (p_Cl.z() < 0.3 || p_Cr.z() < 0.3) continue;
       FeatureObservation o;
       o.track_id = i;
-      o.uv_left = s.rig.left.project(p_Cl) + Eigen::Vector2d(pixel(rng), pixel(rng));
+      o.uv_left_px = s.rig.left.project(p_Cl) + Eigen::Vector2d(pixel(rng), pixel(rng));
+      o.xy_left_norm = s.rig.left.unproject(o.uv_left_px).head<2>();
       const Eigen::Vector2d uv_r =
           s.rig.right->project(p_Cr) + Eigen::Vector2d(pixel(rng), pixel(rng));
-      if (!inImage(o.uv_left)) continue;
-      if (inImage(uv_r)) o.uv_right = uv_r;
+      if (!inImage(o.uv_left_px)) continue;
+      if (inImage(uv_r)) {  // no distortion: raw pixels are the pinhole model's
+        o.uv_right_px = uv_r;
+        o.xy_right_norm = s.rig.right->unproject(uv_r).head<2>();
+      }
       visible.push_back({priority[i], o});
     }
     std::sort(visible.begin(), visible.end(),

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "odometry/camera_rig.h"
-#include "odometry/feature_observation.h"
+#include "odometry/frame_observations.h"
 #include "odometry/imu_types.h"
 #include "sim/sensors/imu.h"
 #include "sim/sensors/trajectory.h"
