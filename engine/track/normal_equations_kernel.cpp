@@ -18,12 +18,13 @@ struct TrackParams {
 static_assert(sizeof(TrackParams) == 160 && offsetof(TrackParams, K_model) == 128,
               "TrackParams layout");
 
-constexpr std::uint32_t kGroupX = 16;
-constexpr std::uint32_t kGroupY = 8;
+// Pixels per workgroup: 128 invocations x kPixelsPerInvocation (track_normal_equations.comp).
+constexpr std::uint32_t kPixelsPerGroup = 128 * 32;
 constexpr std::size_t kPartialFloats = 32;
 
-std::uint32_t groups(int pixels, std::uint32_t size) {
-  return (static_cast<std::uint32_t>(pixels) + size - 1) / size;
+std::uint32_t groups(int width_px, int height_px) {
+  const std::uint32_t pixels = static_cast<std::uint32_t>(width_px * height_px);
+  return (pixels + kPixelsPerGroup - 1) / kPixelsPerGroup;
 }
 
 vk::Buffer uploadVec4(vk::Context& context, const std::vector<Eigen::Vector4f>& data,
@@ -57,8 +58,7 @@ void NormalEquationsKernel::setLive(const std::vector<LiveView>& levels) {
     buffers.vertex = uploadVec4(context_, *live.vertex_C, "track live vertices");
     buffers.normal = uploadVec4(context_, *live.normal_C, "track live normals");
     levels_.push_back(std::move(buffers));
-    most_groups = std::max<std::size_t>(
-        most_groups, std::size_t{groups(live.width_px, kGroupX)} * groups(live.height_px, kGroupY));
+    most_groups = std::max<std::size_t>(most_groups, groups(live.width_px, live.height_px));
   }
   const std::size_t bytes = most_groups * kPartialFloats * 4;
   if (!partials_.valid() || partials_.size() < bytes) {
@@ -125,15 +125,14 @@ NormalEquations NormalEquationsKernel::run(int level, const Eigen::Isometry3d& T
   vk::DescriptorSet set = vk::DescriptorSet::create(
       context_, pipeline_,
       {&live.vertex, &live.normal, model_depth_, model_normal_, &params_, &partials_});
-  const std::uint32_t gx = groups(live.width_px, kGroupX);
-  const std::uint32_t gy = groups(live.height_px, kGroupY);
-  const double ms = dispatchTimed(context_, pipeline_, set, push, sizeof(push), gx, gy, timer_);
+  const std::uint32_t gx = groups(live.width_px, live.height_px);
+  const double ms = dispatchTimed(context_, pipeline_, set, push, sizeof(push), gx, 1, timer_);
   if (device_ms != nullptr) *device_ms = ms;
 
   NormalEquations sums;
   const auto* partial = static_cast<const float*>(partials_.mapped());
   double count = 0.0;
-  for (std::size_t g = 0; g < std::size_t{gx} * gy; ++g) {
+  for (std::size_t g = 0; g < gx; ++g) {
     const float* p = partial + g * kPartialFloats;
     for (int k = 0; k < 21; ++k) sums.JtJ[static_cast<std::size_t>(k)] += p[k];
     for (int k = 0; k < 6; ++k) sums.Jtr[static_cast<std::size_t>(k)] += p[21 + k];

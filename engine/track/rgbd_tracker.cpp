@@ -69,15 +69,20 @@ TrackResult RgbdTracker::track(DeviceTsdfMap& map, int tsdf_layer, const RgbdFra
   }
   RaycastOptions raycast_options;
   raycast_options.tsdf_layer = tsdf_layer;
-  const double raycast_ms = raycast_.render(map, intrinsics, T_W_C_guess, raycast_options);
-  const std::size_t pixels = static_cast<std::size_t>(intrinsics.width_px) * intrinsics.height_px;
+  const CameraIntrinsics& model_intrinsics =
+      pyramid[static_cast<std::size_t>(config_.model_level)].intrinsics;
+  const double raycast_ms =
+      raycast_.render(map, model_intrinsics, T_W_C_guess, raycast_options);
+  const std::size_t pixels =
+      static_cast<std::size_t>(model_intrinsics.width_px) * model_intrinsics.height_px;
   if (countHits(raycast_.normalBuffer(), pixels) < config_.min_inliers) {
     TrackResult result = lostEarly(T_W_C_guess, "the map shows too little from the guess");
     result.raycast_ms = raycast_ms;
     return finish(result);
   }
   equations_.setLive(liveViews(pyramid));
-  equations_.setModel(raycast_.depthBuffer(), raycast_.normalBuffer(), intrinsics, T_W_C_guess);
+  equations_.setModel(raycast_.depthBuffer(), raycast_.normalBuffer(), model_intrinsics,
+                      T_W_C_guess);
 
   TrackResult result;
   result.raycast_ms = raycast_ms;

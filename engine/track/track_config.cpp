@@ -17,6 +17,7 @@ void TrackConfig::validate() const {
   require(levels >= 1 && levels <= 6, "levels must be in [1, 6]");
   require(static_cast<int>(iterations.size()) == levels,
           "iterations must hold one count per level (" + std::to_string(levels) + ")");
+  require(model_level >= 0 && model_level < levels, "model_level must be in [0, levels)");
   for (int n : iterations) require(n >= 1 && n <= 100, "iterations must be in [1, 100]");
   require(pyramid_depth_threshold_m > 0.0f, "pyramid_depth_threshold_m must be > 0");
   require(max_distance_m > 0.0f, "max_distance_m must be > 0");

@@ -14,6 +14,9 @@ struct TrackConfig {
   int levels = 3;
   /// Gauss-Newton iterations per level, coarsest first (size must equal `levels`).
   std::vector<int> iterations{4, 5, 10};
+  /// The model is raycast at the resolution of this pyramid level (0: the frame's; 1: half, a
+  /// quarter of the rays). The raycast is the costliest step; every live level associates with it.
+  int model_level = 1;
   /// Pyramid: a coarse depth is the mean of the valid depths of its 2x2 block within this of the
   /// nearest one (mixing foreground and background would invent surfaces).
   float pyramid_depth_threshold_m = 0.05f;

@@ -2,12 +2,14 @@
 // track_normal_equations: point-to-plane ICP terms of one live level against a model raycast
 // (projective association, distance and normal gates, Huber weight), reduced per workgroup.
 // Reference: engine/track/normal_equations_reference.cpp (equations in normal_equations.h).
-// Workgroup: 16 x 8 x 1, one invocation per live pixel; shared-memory tree reduction of 29 sums.
+// Workgroup: 128 x 1 x 1 over a run of 128 * kPixelsPerInvocation pixels (row-major); each
+// invocation sums the terms of its kPixelsPerInvocation pixels (stride 128), then one
+// shared-memory tree reduction of the 29 sums per workgroup.
 // Bindings: 0 vec4 live_vertex_C[], 1 vec4 live_normal_C[] (w = 1 valid), 2 float model_depth_m[]
 //           (z, 0 = none), 3 vec4 model_normal_W[] (w = 1 on a hit), 4 TrackParams params,
 //           5 float partials[] (32 per workgroup: JtJ upper triangle 21, Jtr 6, r^2, count).
 // Push constants: uvec4 (live width, live height, model width, model height).
-layout(local_size_x = 16, local_size_y = 8) in;
+layout(local_size_x = 128) in;
 
 layout(std430, binding = 0) readonly buffer LiveVertex { vec4 live_vertex_C[]; };
 layout(std430, binding = 1) readonly buffer LiveNormal { vec4 live_normal_C[]; };
@@ -25,13 +27,13 @@ layout(push_constant, std430) uniform Push { uvec4 sizes; } pc;
 
 const uint kGroup = 128u;
 const uint kTerms = 29u;
+const uint kPixelsPerInvocation = 32u;
 shared float sums[kTerms * kGroup];
 
 // Fills t[] with the pixel's terms; false when it is not an inlier.
-bool pixelTerms(uvec2 pixel, out float t[kTerms]) {
+bool pixelTerms(uint index, out float t[kTerms]) {
   for (uint k = 0u; k < kTerms; ++k) t[k] = 0.0;
-  if (any(greaterThanEqual(pixel, pc.sizes.xy))) return false;
-  uint index = pixel.y * pc.sizes.x + pixel.x;
+  if (index >= pc.sizes.x * pc.sizes.y) return false;
   vec4 p4 = live_vertex_C[index];
   vec4 n4 = live_normal_C[index];
   if (p4.w < 0.5 || n4.w < 0.5) return false;
@@ -71,9 +73,16 @@ bool pixelTerms(uvec2 pixel, out float t[kTerms]) {
 
 void main() {
   uint lid = gl_LocalInvocationIndex;
-  float t[kTerms];
-  pixelTerms(gl_GlobalInvocationID.xy, t);
-  for (uint k = 0u; k < kTerms; ++k) sums[k * kGroup + lid] = t[k];
+  float acc[kTerms];
+  for (uint k = 0u; k < kTerms; ++k) acc[k] = 0.0;
+  uint first = gl_WorkGroupID.x * kGroup * kPixelsPerInvocation + lid;
+  for (uint i = 0u; i < kPixelsPerInvocation; ++i) {
+    float t[kTerms];
+    if (pixelTerms(first + i * kGroup, t)) {
+      for (uint k = 0u; k < kTerms; ++k) acc[k] += t[k];
+    }
+  }
+  for (uint k = 0u; k < kTerms; ++k) sums[k * kGroup + lid] = acc[k];
   barrier();
   for (uint stride = kGroup / 2u; stride > 0u; stride >>= 1u) {
     if (lid < stride) {
@@ -81,6 +90,5 @@ void main() {
     }
     barrier();
   }
-  uint group = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
-  if (lid < kTerms) partials[group * 32u + lid] = sums[lid * kGroup];
+  if (lid < kTerms) partials[gl_WorkGroupID.x * 32u + lid] = sums[lid * kGroup];
 }
