@@ -7,6 +7,7 @@
 #include "cli/demo_command.h"
 #include "cli/diff_command.h"
 #include "cli/esdf_command.h"
+#include "cli/eval_trajectory_command.h"
 #include "cli/fuse_command.h"
 #include "cli/mesh_command.h"
 #include "cli/select_command.h"
@@ -30,7 +31,7 @@ int listDevices() {
 
 int runDefault() {
   std::printf("strata: no command given; running the multi-session demo on the shipped room "
-              "(see `strata --help` for fuse, sim, demo, diff, mesh, esdf, devices)\n");
+              "(see `strata --help` for fuse, sim, demo, diff, mesh, esdf, select, eval-trajectory, devices)\n");
   return strata::apps::runDemo(strata::apps::DemoOptions{});
 }
 
@@ -53,6 +54,9 @@ int main(int argc, char** argv) {
   CLI::App* esdf = strata::apps::addEsdfCommand(app, esdf_options);
   strata::apps::SelectOptions select_options;
   CLI::App* select_cmd = strata::apps::addSelectCommand(app, select_options);
+  strata::apps::EvalTrajectoryOptions eval_trajectory_options;
+  CLI::App* eval_trajectory =
+      strata::apps::addEvalTrajectoryCommand(app, eval_trajectory_options);
   CLI::App* devices = app.add_subcommand("devices", "List the Vulkan devices");
   try {
     app.parse(argc, argv);
@@ -66,6 +70,7 @@ int main(int argc, char** argv) {
   if (diff->parsed()) return strata::apps::runDiff(diff_options);
   if (esdf->parsed()) return strata::apps::runEsdf(esdf_options);
   if (select_cmd->parsed()) return strata::apps::runSelect(select_options);
+  if (eval_trajectory->parsed()) return strata::apps::runEvalTrajectory(eval_trajectory_options);
   if (devices->parsed()) return listDevices();
   return runDefault();
 }
