@@ -11,6 +11,7 @@
 #include "occupancy_command.h"
 #include "sim_command.h"
 #include "soak_command.h"
+#include "track_command.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"strata-bench: Strata benchmarks (JSON on stdout, progress on stderr)"};
@@ -31,6 +32,8 @@ int main(int argc, char** argv) {
   CLI::App* lcm = strata::bench::addLcmCommand(app, lcm_options);
   strata::bench::SoakBenchOptions soak_options;
   CLI::App* soak = strata::bench::addSoakCommand(app, soak_options);
+  strata::bench::TrackBenchOptions track_options;
+  CLI::App* track = strata::bench::addTrackCommand(app, track_options);
   strata::bench::AllBenchOptions all_options;
   CLI::App* all = strata::bench::addAllCommand(app, all_options);
   try {
@@ -46,6 +49,7 @@ int main(int argc, char** argv) {
   if (occupancy->parsed()) return strata::bench::runOccupancyBench(occupancy_options);
   if (lcm->parsed()) return strata::bench::runLcmBench(lcm_options);
   if (soak->parsed()) return strata::bench::runSoakBench(soak_options);
+  if (track->parsed()) return strata::bench::runTrackBench(track_options);
   if (all->parsed()) return strata::bench::runAllBench(all_options);
   return 2;
 }

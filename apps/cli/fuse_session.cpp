@@ -22,6 +22,7 @@
 #include "mesh/ply.h"
 #include "raycast/raycast.h"
 #include "sim/analytic_dataset.h"
+#include "trajectory/trajectory_error.h"
 
 namespace strata::apps {
 namespace {
@@ -116,6 +117,8 @@ bool FuseSession::trackFrame(const RgbdFrame& frame) {
   char stamp[32];
   std::snprintf(stamp, sizeof(stamp), "%.6f ", frame.timestamp_s);
   trajectory_ += stamp + tum::poseToTum(result.track.T_W_C) + "\n";
+  estimate_.push_back({frame.timestamp_s, result.track.T_W_C});
+  dataset_poses_.push_back({frame.timestamp_s, frame.T_W_C});
   last_pose_ = result.track.T_W_C;
   return true;
 }
@@ -151,6 +154,14 @@ std::string FuseSession::trackingSummary() const {
     s << ", " << fusion_wall_ms_ / static_cast<double>(fused_) << " ms per frame fusion (wall)";
   }
   s << ".";
+  if (estimate_.size() >= 3) {
+    // NOTE: the dataset's own poses (ignored by tracking after the first frame) as the truth.
+    const traj::TrajectoryError error =
+        traj::evaluateTrajectory(estimate_, dataset_poses_, traj::Alignment::kSE3);
+    s.precision(1);
+    s << " ATE against the dataset's poses (SE(3) aligned, " << error.matched << " poses): RMSE "
+      << error.ate_rmse_m * 1e3 << " mm, max " << error.ate_max_m * 1e3 << " mm.";
+  }
   return s.str();
 }
 

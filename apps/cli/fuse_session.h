@@ -6,6 +6,7 @@
 
 #include "cli/fuse_command.h"
 #include "io/dataset.h"
+#include "io/tum_format.h"
 #include "mapper/mapper.h"
 #include "map/tsdf_map.h"
 #include "mesh/mesh.h"
@@ -77,6 +78,7 @@ class FuseSession {
   int track_iterations_ = 0;
   double fusion_wall_ms_ = 0.0;
   std::string trajectory_;  // TUM lines of the fused frames
+  std::vector<tum::TimedPose> estimate_, dataset_poses_;  // of the fused frames, for the ATE
 };
 
 }  // namespace strata::apps
