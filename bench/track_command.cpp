@@ -72,6 +72,8 @@ struct StrataRun {
   std::vector<double> track_ms, device_ms, fusion_ms;
   std::size_t lost = 0;
   double iterations = 0.0;
+  // The tracked frames' figures nearest to the failure rules (docs/track.md).
+  double lowest_eigenvalue = 1e300, lowest_inlier_fraction = 1.0, highest_rms_m = 0.0;
 };
 
 MapperConfig mapperConfig(const TrackBenchOptions& o) {
@@ -101,6 +103,9 @@ StrataRun runStrata(const PreloadedFrames& data, const TrackBenchOptions& o) {
     run.track_ms.push_back(r.track.wall_ms);
     run.device_ms.push_back(r.track.raycast_ms + r.track.equations_ms);
     run.iterations += r.track.iterations;
+    run.lowest_eigenvalue = std::min(run.lowest_eigenvalue, r.track.min_eigenvalue);
+    run.lowest_inlier_fraction = std::min(run.lowest_inlier_fraction, r.track.inlier_fraction);
+    run.highest_rms_m = std::max(run.highest_rms_m, r.track.rms_m);
     if (r.fused) run.fusion_ms.push_back(r.integrate.fusion.wall_ms);
     if (!r.fused) ++run.lost;
     if (i % 10 == 0) std::fprintf(stderr, "track: strata frame %zu\n", i);
@@ -129,6 +134,9 @@ int runChecked(TrackBenchOptions options) {
                          .set("tracking_device_ms_per_frame_mean", mean(strata.device_ms))
                          .set("fusion_ms_per_frame_mean", mean(strata.fusion_ms))
                          .set("iterations_per_frame_mean", strata.iterations)
+                         .set("lowest_min_eigenvalue", strata.lowest_eigenvalue)
+                         .set("lowest_inlier_fraction", strata.lowest_inlier_fraction)
+                         .set("highest_rms_m", strata.highest_rms_m)
                          .set("ate", ateJson(data, strata.T_W_C, strata.fused));
 
   std::fprintf(stderr, "track: peer odometry\n");
