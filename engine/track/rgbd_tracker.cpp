@@ -36,7 +36,7 @@ TrackResult lostEarly(const Eigen::Isometry3d& T_W_C_guess, const std::string& r
 }  // namespace
 
 RgbdTracker::RgbdTracker(vk::Context& context, const TrackConfig& config)
-    : config_(config), context_(context), raycast_(context), equations_(context) {
+    : config_(config), raycast_(context), equations_(context) {
   config_.validate();
 }
 

@@ -40,7 +40,6 @@ class RgbdTracker {
   void judge(const Eigen::Isometry3d& T_W_C_guess, TrackResult* result) const;
 
   TrackConfig config_;
-  vk::Context& context_;
   RaycastKernel raycast_;
   NormalEquationsKernel equations_;
 };
