@@ -5,6 +5,7 @@
 #include "all_command.h"
 #include "diff_command.h"
 #include "esdf_command.h"
+#include "frontend_command.h"
 #include "fuse_command.h"
 #include "lcm_command.h"
 #include "select_command.h"
@@ -34,6 +35,8 @@ int main(int argc, char** argv) {
   CLI::App* soak = strata::bench::addSoakCommand(app, soak_options);
   strata::bench::TrackBenchOptions track_options;
   CLI::App* track = strata::bench::addTrackCommand(app, track_options);
+  strata::bench::FrontendBenchOptions frontend_options;
+  CLI::App* frontend = strata::bench::addFrontendCommand(app, frontend_options);
   strata::bench::AllBenchOptions all_options;
   CLI::App* all = strata::bench::addAllCommand(app, all_options);
   try {
@@ -50,6 +53,7 @@ int main(int argc, char** argv) {
   if (lcm->parsed()) return strata::bench::runLcmBench(lcm_options);
   if (soak->parsed()) return strata::bench::runSoakBench(soak_options);
   if (track->parsed()) return strata::bench::runTrackBench(track_options);
+  if (frontend->parsed()) return strata::bench::runFrontendBench(frontend_options);
   if (all->parsed()) return strata::bench::runAllBench(all_options);
   return 2;
 }

@@ -8,7 +8,9 @@
 #include "core/error.h"
 #include "json.h"
 #include "machine_info.h"
+#include "sim/sensors/grey_camera.h"
 #include "sim/session/sim_session.h"
+#include "sim/session/stereo_recording.h"
 #include "sim/world/world_paths.h"
 
 namespace strata::bench {
@@ -35,6 +37,26 @@ Json benchWorld(const std::string& name, const SimBenchOptions& o) {
   }
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
   const double frames = static_cast<double>(session.size() - kWarmupFrames);
+  // The grey stereo pair of `strata sim --stereo` (752x480, exposure and pixel noise), at the
+  // same poses; rendering only (the PNG files are not written).
+  const sim::StereoRecordingConfig stereo;
+  sim::GreyCameraConfig grey;
+  grey.intrinsics.width_px = stereo.width_px;
+  grey.intrinsics.height_px = stereo.height_px;
+  grey.intrinsics.fx_px = grey.intrinsics.fy_px = static_cast<float>(0.61 * stereo.width_px);
+  grey.intrinsics.cx_px = 0.5f * static_cast<float>(stereo.width_px - 1);
+  grey.intrinsics.cy_px = 0.5f * static_cast<float>(stereo.height_px - 1);
+  grey.baseline_m = stereo.baseline_m;
+  grey.exposure_gain_sigma = stereo.exposure_gain_sigma;
+  grey.exposure_offset_sigma = stereo.exposure_offset_sigma;
+  const sim::GreyCamera grey_camera(grey);
+  const auto grey_start = Clock::now();
+  for (std::size_t i = kWarmupFrames; i < session.size(); ++i) {
+    grey_camera.render(session.scene(), session.truePoses()[i], session.lighting(), i);
+  }
+  const double grey_s = std::chrono::duration<double>(Clock::now() - grey_start).count();
+  std::fprintf(stderr, "strata-bench sim: %s %.1f grey stereo pairs/s\n", name.c_str(),
+               frames / grey_s);
   std::fprintf(stderr, "strata-bench sim: %s %.1f frames/s\n", name.c_str(), frames / seconds);
   if (valid_pixels == 0) throw Error("world '" + name + "' rendered no valid depth at all");
   return Json::object()
@@ -47,6 +69,9 @@ Json benchWorld(const std::string& name, const SimBenchOptions& o) {
       .set("session_setup_s", setup_s)
       .set("frames_per_s", frames / seconds)
       .set("ms_per_frame", 1000.0 * seconds / frames)
+      .set("grey_stereo_resolution", std::to_string(grey.intrinsics.width_px) + "x" +
+                                         std::to_string(grey.intrinsics.height_px))
+      .set("grey_stereo_pairs_per_s", frames / grey_s)
       .set("valid_depth_share", static_cast<double>(valid_pixels) /
                                     (frames * config.camera.intrinsics.width_px *
                                      config.camera.intrinsics.height_px));
@@ -55,7 +80,7 @@ Json benchWorld(const std::string& name, const SimBenchOptions& o) {
 }  // namespace
 
 CLI::App* addSimCommand(CLI::App& app, SimBenchOptions& o) {
-  CLI::App* sim = app.add_subcommand("sim", "Simulated RGB-D rendering speed per shipped world");
+  CLI::App* sim = app.add_subcommand("sim", "Simulated RGB-D and grey stereo rendering speed per shipped world");
   sim->add_option("--worlds", o.worlds, "World names or files")->delimiter(',');
   sim->add_option("--frames", o.frames, "Frames timed per world")->capture_default_str();
   sim->add_flag("!--no-noise", o.noise, "Render exact depth");

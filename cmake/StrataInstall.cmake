@@ -22,8 +22,11 @@ foreach(folder core vk map integrate raycast esdf mesh occupancy change select t
           FILES_MATCHING PATTERN "*.h" PATTERN "internal" EXCLUDE)
 endforeach()
 if(STRATA_BUILD_IO)
-  install(DIRECTORY ${PROJECT_SOURCE_DIR}/host/io DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/strata
-          FILES_MATCHING PATTERN "*.h" PATTERN "internal" EXCLUDE)
+  foreach(folder io store)
+    install(DIRECTORY ${PROJECT_SOURCE_DIR}/host/${folder}
+            DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/strata
+            FILES_MATCHING PATTERN "*.h" PATTERN "internal" EXCLUDE)
+  endforeach()
 endif()
 install(EXPORT strataTargets NAMESPACE strata:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/strata)
 set(STRATA_CONFIG_WITH_IO ${STRATA_BUILD_IO})

@@ -5,10 +5,12 @@
 #include <fstream>
 #include <iostream>
 
+#include "io/euroc_writer.h"
 #include "io/image_io.h"
 #include "lcm/convert_frame.h"
 #include "lcm/convert_image.h"
 #include "lcm/convert_pose.h"
+#include "lcm/convert_stereo.h"
 #include "map/map_file.h"
 #include "mesh/ply.h"
 #include "strata/command_t.hpp"
@@ -149,6 +151,52 @@ void writeTextSeeds(const fs::path& out) {
             "lighting: {direction: [0.3, -0.4, 1], intensity: 0.65, ambient: 0.35}\n");
 }
 
+void writeEurocSeeds(const fs::path& out) {
+  euroc::CameraCalibration cam;
+  cam.name = "cam0";
+  cam.width_px = 752;
+  cam.height_px = 480;
+  cam.fu_px = 458.654;
+  cam.fv_px = 457.296;
+  cam.cu_px = 367.215;
+  cam.cv_px = 248.375;
+  cam.rate_hz = 20.0;
+  cam.distortion = euroc::DistortionModel::kRadialTangential;
+  cam.distortion_coefficients = {-0.28340811, 0.07395907, 0.00019359, 1.76187114e-05};
+  cam.T_B_C.translation() = Eigen::Vector3d(-0.0216, -0.0647, 0.0098);
+  writeText(out / "fuzz_euroc_sensor_yaml/seed_cam0.yaml", euroc::cameraYaml(cam));
+  euroc::ImuCalibration imu;
+  imu.rate_hz = 200.0;
+  imu.gyro_noise_density = 1.6968e-04;
+  imu.gyro_random_walk = 1.9393e-05;
+  imu.accel_noise_density = 2.0e-3;
+  imu.accel_random_walk = 3.0e-3;
+  writeText(out / "fuzz_euroc_sensor_yaml/seed_imu0.yaml", euroc::imuYaml(imu));
+  writeText(out / "fuzz_euroc_csv/seed_cam0.csv",
+            "#timestamp [ns],filename\n1403715273262142976,1403715273262142976.png\n"
+            "1403715273312143104,1403715273312143104.png\n");
+  writeText(out / "fuzz_euroc_csv/seed_imu0.csv",
+            "#timestamp [ns],w_RS_S_x [rad s^-1],w_RS_S_y [rad s^-1],w_RS_S_z [rad s^-1],"
+            "a_RS_S_x [m s^-2],a_RS_S_y [m s^-2],a_RS_S_z [m s^-2]\n"
+            "1403715273262142976,-0.0020943951023931952,0.017453292519943295,0.0774926187885,"
+            "9.0874956666666655,0.13075533333333333,-3.6938381666666662\n"
+            "1403715273267142912,-0.0013962634015954637,0.019547687622336492,0.0781907504893,"
+            "9.0793234583333327,0.122583125,-3.6938381666666662\n");
+  writeText(out / "fuzz_euroc_csv/seed_groundtruth.csv",
+            "#timestamp, p_RS_R_x [m], p_RS_R_y [m], p_RS_R_z [m], q_RS_w [], q_RS_x [], q_RS_y [], "
+            "q_RS_z [], v_RS_R_x, v_RS_R_y, v_RS_R_z, b_w_x, b_w_y, b_w_z, b_a_x, b_a_y, b_a_z\n"
+            "1403715273262142976,0.878895,2.1834,0.948427,0.069433,-0.824237,-0.106942,-0.551702,"
+            "0.001,-0.002,0.0,-0.002,0.02,0.076,-0.01,0.1,0.08\n");
+  GreyImage left(4, 3, 90), right(4, 3, 80);
+  left.pixels[5] = 200;
+  writeMessage(out / "fuzz_lcm_stereo_image/seed_stereo.lcm",
+               lcm_io::encodeStereo(left, right, 1000, 3, "cam0", "cam1"));
+  writeMessage(out / "fuzz_lcm_stereo_image/seed_mono.lcm",
+               lcm_io::encodeStereo(left, {}, 1000, 0, "cam0", ""));
+  writeMessage(out / "fuzz_lcm_imu/seed_imu.lcm",
+               lcm_io::encodeImu({1000, "imu0", {0.01, -0.02, 0.5}, {0.1, 0.2, 9.81}}));
+}
+
 }  // namespace
 }  // namespace strata
 
@@ -163,5 +211,6 @@ int main(int argc, char** argv) {
   strata::writeImageSeeds(out);
   strata::writeLcmSeeds(out);
   strata::writeTextSeeds(out);
+  strata::writeEurocSeeds(out);
   return 0;
 }

@@ -1,16 +1,19 @@
 #include "parser_entries.h"
 
+#include <algorithm>
 #include <cstring>
 #include <sstream>
 #include <utility>
 
 #include "core/atomic_file.h"
 #include "io/camera_model.h"
+#include "io/euroc_parse.h"
 #include "io/image_io.h"
 #include "io/seven_scenes_dataset.h"
 #include "io/tum_format.h"
 #include "lcm/convert_frame.h"
 #include "lcm/convert_pose.h"
+#include "lcm/convert_stereo.h"
 #include "map/map_file.h"
 #include "mesh/ply.h"
 #include "sim/world/mesh_file.h"
@@ -113,6 +116,46 @@ void lcmPose(const std::uint8_t* data, std::size_t size) {
 
 void lcmCommand(const std::uint8_t* data, std::size_t size) { decoded<command_t>(data, size); }
 
+/// EuRoC sensor.yaml: the IMU's when it says so, else a camera's (what the reader does per folder).
+void eurocSensorYaml(const std::uint8_t* data, std::size_t size) {
+  const std::string yaml = text(data, size);
+  if (yaml.find("sensor_type: imu") != std::string::npos) {
+    euroc::parseImuYaml(yaml, "imu0/sensor.yaml");
+  } else {
+    euroc::parseCameraYaml(yaml, "cam0/sensor.yaml");
+  }
+}
+
+/// EuRoC csv files, told apart by the first data row's column count: 2 a camera's data.csv, 7 the
+/// IMU's, otherwise the ground truth's.
+void eurocCsv(const std::uint8_t* data, std::size_t size) {
+  const std::string csv = text(data, size);
+  std::size_t line = 0;
+  while (line < csv.size() && csv[line] == '#') {
+    const std::size_t end = csv.find('\n', line);
+    line = end == std::string::npos ? csv.size() : end + 1;
+  }
+  const std::size_t end = std::min(csv.find('\n', line), csv.size());
+  const auto commas = std::count(csv.begin() + static_cast<std::ptrdiff_t>(line),
+                                 csv.begin() + static_cast<std::ptrdiff_t>(end), ',');
+  if (commas == 1) {
+    euroc::parseImageCsv(csv, "cam0/data.csv");
+  } else if (commas == 6) {
+    euroc::parseImuCsv(csv, "imu0/data.csv");
+  } else {
+    euroc::parseGroundTruthCsv(csv, "state_groundtruth_estimate0/data.csv");
+  }
+}
+
+// What a consumer of STRATA_STEREO / STRATA_IMU does with a payload.
+void lcmStereoImage(const std::uint8_t* data, std::size_t size) {
+  lcm_io::decodeStereo(decoded<stereo_image_t>(data, size));
+}
+
+void lcmImu(const std::uint8_t* data, std::size_t size) {
+  lcm_io::decodeImu(decoded<imu_t>(data, size));
+}
+
 const std::pair<const char*, Entry> kEntries[] = {
     {"fuzz_map_file", mapFile},
     {"fuzz_tum_file_list", tumFileList},
@@ -129,6 +172,10 @@ const std::pair<const char*, Entry> kEntries[] = {
     {"fuzz_lcm_camera_info", lcmCameraInfo},
     {"fuzz_lcm_pose", lcmPose},
     {"fuzz_lcm_command", lcmCommand},
+    {"fuzz_euroc_sensor_yaml", eurocSensorYaml},
+    {"fuzz_euroc_csv", eurocCsv},
+    {"fuzz_lcm_stereo_image", lcmStereoImage},
+    {"fuzz_lcm_imu", lcmImu},
 };
 
 }  // namespace

@@ -11,6 +11,7 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev libembree-dev
   liblcm-dev liblcm-bin libglib2.0-dev iproute2 util-linux
   clang libclang-rt-14-dev llvm
+  libsqlite3-dev
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

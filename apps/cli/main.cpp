@@ -9,6 +9,7 @@
 #include "cli/esdf_command.h"
 #include "cli/eval_trajectory_command.h"
 #include "cli/fuse_command.h"
+#include "cli/map_command.h"
 #include "cli/mesh_command.h"
 #include "cli/select_command.h"
 #include "cli/sim_command.h"
@@ -31,7 +32,7 @@ int listDevices() {
 
 int runDefault() {
   std::printf("strata: no command given; running the multi-session demo on the shipped room "
-              "(see `strata --help` for fuse, sim, demo, diff, mesh, esdf, select, eval-trajectory, devices)\n");
+              "(see `strata --help` for fuse, sim, demo, diff, mesh, esdf, select, eval-trajectory, map, devices)\n");
   return strata::apps::runDemo(strata::apps::DemoOptions{});
 }
 
@@ -57,6 +58,8 @@ int main(int argc, char** argv) {
   strata::apps::EvalTrajectoryOptions eval_trajectory_options;
   CLI::App* eval_trajectory =
       strata::apps::addEvalTrajectoryCommand(app, eval_trajectory_options);
+  strata::apps::MapOptions map_options;
+  CLI::App* map = strata::apps::addMapCommand(app, map_options);
   CLI::App* devices = app.add_subcommand("devices", "List the Vulkan devices");
   try {
     app.parse(argc, argv);
@@ -71,6 +74,7 @@ int main(int argc, char** argv) {
   if (esdf->parsed()) return strata::apps::runEsdf(esdf_options);
   if (select_cmd->parsed()) return strata::apps::runSelect(select_options);
   if (eval_trajectory->parsed()) return strata::apps::runEvalTrajectory(eval_trajectory_options);
+  if (map->parsed()) return strata::apps::runMap(map_options);
   if (devices->parsed()) return listDevices();
   return runDefault();
 }

@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "io/tum_format.h"
 #include "io/tum_writer.h"
+#include "sim/session/stereo_recording.h"
 #include "sim/world/ground_truth.h"
 
 namespace strata::apps {
@@ -52,6 +53,21 @@ std::size_t writeSession(const sim::SimSessionDataset& session, const fs::path& 
   return session.size();
 }
 
+sim::StereoRecordingConfig stereoConfig(const SimOptions& o) {
+  sim::StereoRecordingConfig config;
+  config.stereo = !o.mono;
+  config.duration_s = o.stereo_duration_s;
+  config.width_px = o.stereo_width_px;
+  config.height_px = o.stereo_height_px;
+  config.exposure_gain_sigma = o.no_noise ? 0.0 : o.exposure_gain_sigma;
+  config.exposure_offset_sigma = o.no_noise ? 0.0 : o.exposure_offset_sigma;
+  if (o.no_noise) {
+    config.pixel_noise_sigma = 0.0;
+    config.imu.noise = false;
+  }
+  return config;
+}
+
 }  // namespace
 
 CLI::App* addSimCommand(CLI::App& app, SimOptions& o) {
@@ -65,6 +81,21 @@ CLI::App* addSimCommand(CLI::App& app, SimOptions& o) {
   sim->add_flag("--no-noise", o.no_noise, "Exact depth (16-bit quantisation only)");
   sim->add_flag("--drift", o.drift, "Also write drifted odometry (odometry.txt)");
   sim->add_flag("--quiet", o.quiet, "No progress bar");
+  sim->add_flag("--stereo", o.stereo,
+                "Also write each session as grey stereo + IMU in the EuRoC layout (mav0/)");
+  sim->add_flag("--mono", o.mono, "With --stereo: the left camera only");
+  sim->add_option("--stereo-duration", o.stereo_duration_s,
+                  "With --stereo: record only the first seconds of each path (0: all)");
+  sim->add_option("--stereo-width", o.stereo_width_px, "Grey camera width, px")
+      ->capture_default_str();
+  sim->add_option("--stereo-height", o.stereo_height_px, "Grey camera height, px")
+      ->capture_default_str();
+  sim->add_option("--exposure-gain-sigma", o.exposure_gain_sigma,
+                  "Per-frame exposure gain noise (relative)")
+      ->capture_default_str();
+  sim->add_option("--exposure-offset-sigma", o.exposure_offset_sigma,
+                  "Per-frame exposure offset noise (grey levels)")
+      ->capture_default_str();
   return sim;
 }
 
@@ -82,20 +113,32 @@ int runSim(const SimOptions& o) {
     const fs::path out(o.out_dir);
     fs::create_directories(out);
     sim::writeGroundTruth(*world, (out / "ground_truth").string());
+    const sim::StereoRecordingConfig stereo = stereoConfig(o);
+    const std::size_t rgbd_frames = total;
+    if (o.stereo) {
+      stereo.validate();
+      for (const auto& session : sessions) total += sim::stereoFrameCount(*session, stereo);
+    }
     ProgressBar progress("rendering", total, !o.quiet);
     std::size_t done = 0;
     for (const auto& session : sessions) {
       char name[32];
       std::snprintf(name, sizeof(name), "session_%d", session->session());
       writeSession(*session, out / name, o.drift, progress, done);
+      if (o.stereo) {
+        sim::writeStereoRecording(*session, stereo, (out / name).string(),
+                                  [&] { progress.update(++done); });
+      }
     }
     progress.finish();
     std::printf("Rendered %d sessions of world '%s' (seed %llu), %zu frames at %dx%d, into %s "
-                "(TUM RGB-D per session, IMU in EuRoC layout, ground truth in ground_truth/).\n",
+                "(TUM RGB-D per session, IMU in EuRoC layout, ground truth in ground_truth/%s).\n",
                 world->sessionCount(), world->name().c_str(),
-                static_cast<unsigned long long>(world->seed()), total,
+                static_cast<unsigned long long>(world->seed()), rgbd_frames,
                 config.camera.intrinsics.width_px, config.camera.intrinsics.height_px,
-                o.out_dir.c_str());
+                o.out_dir.c_str(),
+                o.stereo ? (o.mono ? "; grey mono + IMU in mav0/" : "; grey stereo + IMU in mav0/")
+                         : "");
     return 0;
   } catch (const InputError& e) {
     std::fprintf(stderr, "strata sim: input error: %s\n", e.what());

@@ -1,6 +1,8 @@
 #pragma once
 // `strata sim [WORLD] --sessions N --out DIR`: render every session of a world to disk in the TUM
-// RGB-D layout, with the ground truth (meshes, object poses, changes) and IMU in the EuRoC layout.
+// RGB-D layout, with the ground truth (meshes, object poses, changes) and IMU in the EuRoC layout;
+// with --stereo also a grey stereo camera + IMU + body ground truth in the EuRoC/ASL layout (mav0/,
+// sim/session/stereo_recording.h).
 #include <cstdint>
 #include <string>
 
@@ -20,6 +22,14 @@ struct SimOptions {
   bool no_noise = false;
   bool drift = false;
   bool quiet = false;
+  /// EuRoC layout per session (mav0/): grey stereo at 20 Hz, IMU at 200 Hz, body ground truth.
+  bool stereo = false;
+  bool mono = false;              // with stereo: cam0 only
+  double stereo_duration_s = 0.0;  // > 0: only the first seconds of each path
+  int stereo_width_px = 752;
+  int stereo_height_px = 480;
+  double exposure_gain_sigma = 0.03;
+  double exposure_offset_sigma = 2.0;
 };
 
 CLI::App* addSimCommand(CLI::App& app, SimOptions& options);

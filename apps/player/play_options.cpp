@@ -21,7 +21,9 @@ void PlayOptions::validate() const {
 }
 
 void addPlayOptions(CLI::App& app, PlayOptions& o) {
-  app.add_option("dataset", o.dataset, "TUM RGB-D folder, or sim:WORLD[:SESSION] (e.g. sim:room:1)")
+  app.add_option("dataset", o.dataset,
+                 "TUM RGB-D folder, EuRoC session folder (mav0/), or sim:WORLD[:SESSION] "
+                 "(e.g. sim:room:1)")
       ->required();
   app.add_option("--url", o.url, "LCM URL (udpm with ttl=0 stays on this host)")
       ->capture_default_str();
@@ -58,6 +60,9 @@ void addPlayOptions(CLI::App& app, PlayOptions& o) {
   app.add_option("--camera-id", o.camera_id)->capture_default_str();
   app.add_option("--rgbd-channel", o.rgbd_channel)->capture_default_str();
   app.add_option("--pose-channel", o.pose_channel)->capture_default_str();
+  app.add_option("--imu-channel", o.imu_channel)->capture_default_str();
+  app.add_option("--stereo-channel", o.stereo_channel, "EuRoC sessions: grey stereo frames")
+      ->capture_default_str();
   app.add_option("--command-channel", o.command_channel)->capture_default_str();
   app.add_option("--stats-channel", o.stats_channel)->capture_default_str();
   app.add_flag("--quiet", o.quiet, "No progress bar");

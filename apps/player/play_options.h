@@ -12,13 +12,15 @@ class App;
 namespace strata::apps {
 
 struct PlayOptions {
-  /// A TUM RGB-D folder, or "sim:WORLD[:SESSION]" (a shipped world name or a world YAML path).
+  /// A TUM RGB-D folder, an EuRoC/ASL session folder (mav0/: grey stereo + IMU, see
+  /// player/play_euroc.h), or "sim:WORLD[:SESSION]" (a shipped world name or a world YAML path).
   std::string dataset;
   std::string url = lcm_io::kDefaultUrl;
   std::string rgbd_channel = lcm_io::kRgbdChannel;
   std::string camera_info_channel = lcm_io::kCameraInfoChannel;
   std::string pose_channel = lcm_io::kPoseChannel;
   std::string imu_channel = lcm_io::kImuChannel;
+  std::string stereo_channel = lcm_io::kStereoChannel;
   std::string command_channel = lcm_io::kCommandChannel;
   std::string stats_channel = lcm_io::kStatsChannel;
   std::string camera_id = "depth";

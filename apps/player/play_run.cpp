@@ -2,8 +2,11 @@
 
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <thread>
 
+#include "io/euroc_dataset.h"
+#include "player/play_euroc.h"
 #include "player/play_flow.h"
 #include "player/play_publisher.h"
 #include "player/play_source.h"
@@ -169,6 +172,17 @@ int runPlay(const PlayOptions& options) {
     options.validate();
     lcm::LCM lcm(options.url);
     if (!lcm.good()) throw InputError("LCM URL '" + options.url + "' could not be opened");
+    // NOTE: `strata sim --stereo` sessions hold both layouts: the folder plays as TUM RGB-D (for
+    // the mapper), its mav0/ as grey stereo + IMU.
+    if (euroc::isEurocFolder(options.dataset) &&
+        !std::filesystem::exists(std::filesystem::path(options.dataset) / "depth.txt")) {
+      const EurocPlaySummary s = playEuroc(options, lcm);
+      std::printf("strata-play: sent %zu grey frames on %s and %zu IMU samples on %s of '%s' "
+                  "(%.1f MB) in %.2f s.\n",
+                  s.frames, options.stereo_channel.c_str(), s.imu_samples,
+                  options.imu_channel.c_str(), options.dataset.c_str(), s.bytes / 1e6, s.seconds);
+      return 0;
+    }
     Player player(options, lcm);
     player.play();
     const bool confirmed = player.finish();

@@ -47,6 +47,19 @@ struct ColorImage {
   bool empty() const { return rgb.empty(); }
 };
 
+/// 8-bit luminance, row-major, one byte per pixel (grey cameras: EuRoC, the simulator's).
+struct GreyImage {
+  int width_px = 0;
+  int height_px = 0;
+  std::vector<std::uint8_t> pixels;
+
+  GreyImage() = default;
+  GreyImage(int width, int height, std::uint8_t fill = 0)
+      : width_px(width), height_px(height), pixels(static_cast<size_t>(width) * height, fill) {}
+  std::uint8_t at(int u, int v) const { return pixels[static_cast<size_t>(v) * width_px + u]; }
+  bool empty() const { return pixels.empty(); }
+};
+
 /// One RGB-D frame with the camera-to-world pose. Colour may be empty.
 struct RgbdFrame {
   double timestamp_s = 0.0;

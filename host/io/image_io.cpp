@@ -1,5 +1,6 @@
 #include "io/image_io.h"
 
+#include <algorithm>
 #include <cmath>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -108,6 +109,25 @@ ColorImage decodeColorImage(const std::vector<std::uint8_t>& bytes, const std::s
   return color;
 }
 
+GreyImage readGreyImage(const std::string& path) {
+  return decodeGreyImage(readFileBounded(path, kMaxImageFileBytes, "grey image"), path);
+}
+
+GreyImage decodeGreyImage(const std::vector<std::uint8_t>& bytes, const std::string& path) {
+  // NOTE: IMREAD_UNCHANGED so a colour or 16-bit file is reported, not silently converted.
+  const cv::Mat raw = decodeImage(bytes, path, cv::IMREAD_UNCHANGED, "grey image");
+  if (raw.type() != CV_8UC1) {
+    throw InputError(path + ": grey image must be 8-bit single-channel, found " +
+                     describeType(raw));
+  }
+  GreyImage grey(raw.cols, raw.rows);
+  for (int v = 0; v < raw.rows; ++v) {
+    const std::uint8_t* row = raw.ptr<std::uint8_t>(v);
+    std::copy(row, row + raw.cols, grey.pixels.data() + static_cast<std::size_t>(v) * raw.cols);
+  }
+  return grey;
+}
+
 void writeDepthPng(const std::string& path, const DepthImage& depth, double depth_scale) {
   cv::Mat raw(depth.height_px, depth.width_px, CV_16UC1);
   for (int v = 0; v < depth.height_px; ++v) {
@@ -135,6 +155,18 @@ void writeColorPng(const std::string& path, const ColorImage& color) {
     for (int u = 0; u < color.width_px; ++u, in += 3) row[u] = cv::Vec3b(in[2], in[1], in[0]);
   }
   writeImage(path, bgr);
+}
+
+void writeGreyPng(const std::string& path, const GreyImage& grey) {
+  if (grey.pixels.size() != static_cast<std::size_t>(grey.width_px) * grey.height_px) {
+    throw InputError(path + ": grey image has " + std::to_string(grey.pixels.size()) +
+                     " pixels for " + std::to_string(grey.width_px) + "x" +
+                     std::to_string(grey.height_px));
+  }
+  // The Mat wraps the pixels without copying; imencode only reads them.
+  const cv::Mat raw(grey.height_px, grey.width_px, CV_8UC1,
+                    const_cast<std::uint8_t*>(grey.pixels.data()));
+  writeImage(path, raw);
 }
 
 }  // namespace strata

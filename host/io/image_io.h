@@ -1,5 +1,5 @@
 #pragma once
-// PNG/JPEG reading and writing for depth and colour images (OpenCV underneath, not exposed).
+// PNG/JPEG reading and writing for depth, colour and grey images (OpenCV underneath, not exposed).
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -36,6 +36,12 @@ ColorImage readColorImage(const std::string& path);
 /// The same from the file's bytes; `name` (a path) prefixes error messages.
 ColorImage decodeColorImage(const std::vector<std::uint8_t>& bytes, const std::string& name);
 
+/// Reads an 8-bit single-channel PNG or JPEG (EuRoC cameras). Other types (colour, 16-bit) are
+/// refused, not converted. Throws InputError naming the file, with the same limits as readDepthPng.
+GreyImage readGreyImage(const std::string& path);
+/// The same from the file's bytes; `name` (a path) prefixes error messages.
+GreyImage decodeGreyImage(const std::vector<std::uint8_t>& bytes, const std::string& name);
+
 /// Writes depth as a 16-bit PNG: round(depth_m * depth_scale); 0 and non-finite stay 0. Throws
 /// InputError when a depth does not fit 16 bits at that scale, Error when the file cannot be
 /// written.
@@ -43,5 +49,8 @@ void writeDepthPng(const std::string& path, const DepthImage& depth, double dept
 
 /// Writes an RGB image as PNG. Throws Error when the file cannot be written.
 void writeColorPng(const std::string& path, const ColorImage& color);
+
+/// Writes an 8-bit grey PNG, atomically. Throws Error when the file cannot be written.
+void writeGreyPng(const std::string& path, const GreyImage& grey);
 
 }  // namespace strata

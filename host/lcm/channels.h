@@ -7,6 +7,7 @@ inline constexpr const char* kRgbdChannel = "STRATA_RGBD";                // rgb
 inline constexpr const char* kCameraInfoChannel = "STRATA_CAMERA_INFO";   // camera_info_t, in
 inline constexpr const char* kPoseChannel = "STRATA_POSE";                // pose_t T_W_C, in
 inline constexpr const char* kImuChannel = "STRATA_IMU";                  // imu_t, in (recorded)
+inline constexpr const char* kStereoChannel = "STRATA_STEREO";            // stereo_image_t (VIO)
 inline constexpr const char* kCommandChannel = "STRATA_COMMAND";          // command_t, in
 inline constexpr const char* kMeshChannel = "STRATA_MESH_UPDATE";         // mesh_update_t, out
 inline constexpr const char* kEsdfChannel = "STRATA_ESDF_SLICE";          // esdf_slice_t, out

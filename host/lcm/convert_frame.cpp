@@ -111,6 +111,22 @@ void checkCameraInfoLengths(const std::uint8_t* data, int size) {
   in.skip(in.checkedLength(in.readInt32(), 8, "distortion"));
 }
 
+void checkStereoImageLengths(const std::uint8_t* data, int size) {
+  WireReader in(data, size, "stereo_image_t");
+  in.skip(8 + 8 + 8);  // fingerprint, utime, sequence
+  in.skipString();     // left_camera
+  in.skipString();     // right_camera
+  skipImage(in);
+  skipImage(in);
+}
+
+void checkImuLengths(const std::uint8_t* data, int size) {
+  WireReader in(data, size, "imu_t");
+  in.skip(8 + 8);   // fingerprint, utime
+  in.skipString();  // frame
+  in.skip(48);      // angular_velocity, linear_acceleration
+}
+
 rgbd_frame_t encodeFrame(const RgbdFrame& frame, std::int64_t utime, const std::string& camera_id,
                          std::int64_t sequence, const FrameEncoding& encoding) {
   rgbd_frame_t message{};

@@ -53,6 +53,8 @@ void checkRgbdFrameLengths(const std::uint8_t* data, int size);
 void checkCameraInfoLengths(const std::uint8_t* data, int size);
 void checkPoseLengths(const std::uint8_t* data, int size);
 void checkCommandLengths(const std::uint8_t* data, int size);
+void checkStereoImageLengths(const std::uint8_t* data, int size);
+void checkImuLengths(const std::uint8_t* data, int size);
 
 }  // namespace strata::lcm_io
 

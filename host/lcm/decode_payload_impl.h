@@ -7,8 +7,10 @@
 #include "core/error.h"
 #include "strata/camera_info_t.hpp"
 #include "strata/command_t.hpp"
+#include "strata/imu_t.hpp"
 #include "strata/pose_t.hpp"
 #include "strata/rgbd_frame_t.hpp"
+#include "strata/stereo_image_t.hpp"
 
 namespace strata::lcm_io {
 
@@ -27,6 +29,8 @@ void decodePayload(const void* data, int size, Message& message) {
   if constexpr (std::is_same_v<Message, camera_info_t>) checkCameraInfoLengths(bytes, size);
   if constexpr (std::is_same_v<Message, pose_t>) checkPoseLengths(bytes, size);
   if constexpr (std::is_same_v<Message, command_t>) checkCommandLengths(bytes, size);
+  if constexpr (std::is_same_v<Message, stereo_image_t>) checkStereoImageLengths(bytes, size);
+  if constexpr (std::is_same_v<Message, imu_t>) checkImuLengths(bytes, size);
   int used = -1;
   try {
     used = message.decode(data, 0, size);

@@ -22,6 +22,12 @@ struct GreyCameraConfig {
   WorldTextureConfig texture;
   /// Gaussian read noise, grey levels (0 = noise-free).
   double pixel_noise_sigma = 1.0;
+  /// Per-frame exposure change (auto-exposure, flicker): each frame draws gain = 1 + sigma_g n1
+  /// and offset = sigma_o n2 (n Gaussian, seeded by the frame seed, shared by both eyes of a pair
+  /// as with synchronised exposure) and every level becomes gain * level + offset before the
+  /// read noise. Defaults 0: constant exposure.
+  double exposure_gain_sigma = 0.0;    // relative
+  double exposure_offset_sigma = 0.0;  // grey levels
   /// Threads for shading (0 = hardware concurrency); the output never depends on it.
   int threads = 0;
 
@@ -32,6 +38,8 @@ struct GreyCameraConfig {
 struct GreyFrame {
   std::vector<GreyImage> eyes;             // [left] or [left, right]
   std::vector<Eigen::Isometry3d> T_W_eye;  // camera-to-world pose of each eye
+  double exposure_gain = 1.0;              // the frame's drawn exposure (truth)
+  double exposure_offset = 0.0;
 };
 
 /// Thread safety: render() may be called from several threads at once.
@@ -47,7 +55,8 @@ class GreyCamera {
 
  private:
   GreyImage renderEye(const RayScene& scene, const Eigen::Isometry3d& T_W_eye,
-                      const Lighting& lighting, std::uint64_t eye_seed) const;
+                      const Lighting& lighting, std::uint64_t eye_seed, double gain,
+                      double offset) const;
 
   GreyCameraConfig config_;
   PixelRayTable ray_table_;

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/types.h"
 #include "sim/ray_scene.h"
 
 namespace strata::sim {
@@ -22,16 +23,7 @@ struct ObjectIdImage {
   std::int32_t at(int u, int v) const { return ids[static_cast<std::size_t>(v) * width_px + u]; }
 };
 
-/// 8-bit luminance, row-major, one byte per pixel.
-struct GreyImage {
-  int width_px = 0;
-  int height_px = 0;
-  std::vector<std::uint8_t> pixels;
-
-  GreyImage() = default;
-  GreyImage(int width, int height)
-      : width_px(width), height_px(height), pixels(static_cast<std::size_t>(width) * height, 0) {}
-  std::uint8_t at(int u, int v) const { return pixels[static_cast<std::size_t>(v) * width_px + u]; }
-};
+/// The grey image type lives in core/types.h so dataset readers (io) share it with the simulator.
+using GreyImage = ::strata::GreyImage;
 
 }  // namespace strata::sim

@@ -55,6 +55,9 @@ class SimSessionDataset : public Dataset {
   double timestamp(std::size_t index) const { return times_s_.at(index); }
   const std::vector<Eigen::Isometry3d>& truePoses() const { return true_T_W_C_; }
   const std::vector<Eigen::Isometry3d>& givenPoses() const { return given_T_W_C_; }
+  /// The session's lighting and seed (what its sensors render and draw with).
+  const Lighting& lighting() const { return lighting_; }
+  std::uint64_t seed() const { return seed_; }
   /// IMU samples over the whole trajectory (EuRoC rates and noise by default).
   std::vector<ImuSample> imu(const ImuConfig& config = {}) const;
 

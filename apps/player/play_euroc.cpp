@@ -1,0 +1,91 @@
+#include "player/play_euroc.h"
+
+#include <chrono>
+#include <thread>
+
+#include "cli/progress.h"
+#include "core/error.h"
+#include "io/euroc_dataset.h"
+#include "lcm/convert_stereo.h"
+#include "lcm/lcm_time.h"
+
+namespace strata::apps {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+template <typename Message>
+std::size_t publishOrThrow(lcm::LCM& lcm, const std::string& channel, const Message& message) {
+  if (lcm.publish(channel, &message) != 0) {
+    throw InputError("LCM could not publish on " + channel + " (" + Message::getTypeName() + ")");
+  }
+  return static_cast<std::size_t>(message.getEncodedSize());
+}
+
+/// Events to send: the picked frames and the IMU samples within their span (all when all frames).
+std::vector<euroc::Event> pickEvents(const euroc::EurocDataset& d, const PlayOptions& o) {
+  std::vector<bool> picked(d.frames().size(), false);
+  std::size_t count = 0, first_index = 0, last_index = 0;
+  for (std::size_t i = static_cast<std::size_t>(o.first); i < d.frames().size(); i += o.stride) {
+    if (o.frames > 0 && count >= static_cast<std::size_t>(o.frames)) break;
+    if (count++ == 0) first_index = i;
+    last_index = i;
+    picked[i] = true;
+  }
+  if (count == 0) throw InputError("'" + o.dataset + "' has no frames to send");
+  const bool all = count == d.frames().size();
+  const std::int64_t t_first = d.frames()[first_index].timestamp_ns;
+  const std::int64_t t_last = d.frames()[last_index].timestamp_ns;
+  std::vector<euroc::Event> events;
+  for (const euroc::Event& e : d.events()) {
+    if (e.kind == euroc::Event::Kind::kFrame
+            ? picked[e.index]
+            : all || (e.timestamp_ns >= t_first && e.timestamp_ns <= t_last)) {
+      events.push_back(e);
+    }
+  }
+  return events;
+}
+
+}  // namespace
+
+EurocPlaySummary playEuroc(const PlayOptions& o, lcm::LCM& lcm) {
+  const euroc::EurocDataset d = euroc::EurocDataset::open(o.dataset);
+  const std::vector<euroc::Event> events = pickEvents(d, o);
+  const std::string left_name = d.calibration().cameras[0].name;
+  const std::string right_name = d.stereo() ? d.calibration().cameras[1].name : "";
+  EurocPlaySummary summary;
+  std::size_t frame_events = 0;
+  for (const euroc::Event& e : events) frame_events += e.kind == euroc::Event::Kind::kFrame;
+  ProgressBar progress("sending", frame_events, !o.quiet);
+  const auto start = Clock::now();
+  const std::int64_t t0_ns = events.front().timestamp_ns;
+  const std::int64_t base_utime = lcm_io::nowUtime();
+  for (const euroc::Event& e : events) {
+    const std::int64_t offset_ns = e.timestamp_ns - t0_ns;
+    if (o.rate > 0.0) {
+      std::this_thread::sleep_until(start +
+                                    std::chrono::duration_cast<Clock::duration>(
+                                        std::chrono::duration<double>(offset_ns * 1e-9 / o.rate)));
+    }
+    const std::int64_t utime = o.restamp ? base_utime + offset_ns / 1000 : e.timestamp_ns / 1000;
+    if (e.kind == euroc::Event::Kind::kImu) {
+      const euroc::ImuSample& s = d.imu()[e.index];
+      summary.bytes += publishOrThrow(
+          lcm, o.imu_channel, lcm_io::encodeImu({utime, "imu0", s.gyro_rad_s, s.accel_mps2}));
+      ++summary.imu_samples;
+    } else {
+      const euroc::StereoImages images = d.loadImages(e.index);
+      summary.bytes += publishOrThrow(
+          lcm, o.stereo_channel,
+          lcm_io::encodeStereo(images.left, images.right, utime,
+                               static_cast<std::int64_t>(summary.frames), left_name, right_name));
+      progress.update(++summary.frames);
+    }
+  }
+  progress.finish();
+  summary.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  return summary;
+}
+
+}  // namespace strata::apps

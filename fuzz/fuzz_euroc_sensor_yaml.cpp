@@ -1,0 +1,8 @@
+// libFuzzer target: EuRoC sensor.yaml (camera or IMU), through the fuzz_euroc_sensor_yaml entry of
+// parser_entries.h.
+#include "parser_entries.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  static const strata::fuzz::Entry kEntry = strata::fuzz::findEntry("fuzz_euroc_sensor_yaml");
+  return strata::fuzz::refuseOrAccept(kEntry, data, size);
+}

@@ -1,0 +1,8 @@
+// libFuzzer target: stereo_image_t payloads, through the fuzz_lcm_stereo_image entry of
+// parser_entries.h.
+#include "parser_entries.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  static const strata::fuzz::Entry kEntry = strata::fuzz::findEntry("fuzz_lcm_stereo_image");
+  return strata::fuzz::refuseOrAccept(kEntry, data, size);
+}

@@ -1,0 +1,188 @@
+// `strata sim --stereo` read back with the EuRoC reader, and the grey camera's exposure noise.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "cli/sim_command.h"
+#include "cli/sim_setup.h"
+#include "io/euroc_dataset.h"
+#include "io/tum_format.h"
+#include "sim/primitives.h"
+#include "sim/sensors/analytic_ray_scene.h"
+#include "sim/sensors/grey_camera.h"
+#include "sim/session/stereo_recording.h"
+
+namespace strata::euroc {
+namespace {
+
+namespace fs = std::filesystem;
+
+Eigen::Matrix3d expSO3(const Eigen::Vector3d& w) {
+  const double angle = w.norm();
+  if (angle < 1e-12) return Eigen::Matrix3d::Identity();
+  return Eigen::AngleAxisd(angle, w / angle).toRotationMatrix();
+}
+
+class EurocSim : public testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    out_ = fs::temp_directory_path() / ("strata_test_euroc_sim_" + std::to_string(::getpid()));
+    fs::remove_all(out_);
+    apps::SimOptions o;
+    o.sessions = 1;
+    o.max_frames = 2;
+    o.out_dir = out_.string();
+    o.quiet = true;
+    o.stereo = true;
+    o.stereo_duration_s = 1.0;
+    o.stereo_width_px = 160;
+    o.stereo_height_px = 120;
+    ASSERT_EQ(apps::runSim(o), 0);
+  }
+  static void TearDownTestSuite() { fs::remove_all(out_); }
+  static fs::path session() { return out_ / "session_0"; }
+  static fs::path out_;
+};
+fs::path EurocSim::out_;
+
+TEST_F(EurocSim, CalibrationCountsAndTimestampsReadBack) {
+  const EurocDataset d = EurocDataset::open(session().string());
+  ASSERT_TRUE(d.stereo());
+  const CameraCalibration& cam0 = d.calibration().cameras[0];
+  EXPECT_EQ(cam0.width_px, 160);
+  EXPECT_EQ(cam0.height_px, 120);
+  EXPECT_NEAR(cam0.fu_px, 0.61 * 160, 1e-12);
+  EXPECT_NEAR(cam0.cu_px, 79.5, 1e-12);
+  EXPECT_EQ(cam0.distortion, DistortionModel::kNone);
+  EXPECT_TRUE(cam0.T_B_C.isApprox(sim::defaultT_C_B().inverse(), 1e-12));
+  EXPECT_TRUE(d.calibration().T_C0_C1().isApprox(
+      Eigen::Isometry3d(Eigen::Translation3d(0.11, 0.0, 0.0)), 1e-12));
+  EXPECT_DOUBLE_EQ(d.calibration().imu.rate_hz, 200.0);
+  EXPECT_DOUBLE_EQ(d.calibration().imu.accel_noise_density, 2.0e-3);
+
+  ASSERT_EQ(d.frames().size(), 21u);  // t = 0 .. 1 s at 20 Hz
+  ASSERT_EQ(d.imu().size(), 201u);    // at 200 Hz
+  EXPECT_EQ(d.stats().imu_gaps, 0u);
+  EXPECT_EQ(d.stats().unpaired_left + d.stats().unpaired_right + d.stats().missing_images, 0u);
+  for (std::size_t k = 0; k < d.frames().size(); ++k) {
+    EXPECT_EQ(d.frames()[k].timestamp_ns, static_cast<std::int64_t>(k) * 50'000'000);
+    EXPECT_EQ(d.imu()[10 * k].timestamp_ns, d.frames()[k].timestamp_ns);  // a sample per frame
+  }
+  EXPECT_EQ(d.groundTruth().size(), d.imu().size());
+  EXPECT_TRUE(d.groundTruth().front().has_velocity_and_biases);
+
+  const StereoImages images = d.loadImages(10);
+  double left_mean = 0.0;
+  int differ = 0;
+  for (std::size_t i = 0; i < images.left.pixels.size(); ++i) {
+    left_mean += images.left.pixels[i];
+    differ += images.left.pixels[i] != images.right.pixels[i];
+  }
+  left_mean /= static_cast<double>(images.left.pixels.size());
+  EXPECT_GT(left_mean, 20.0);  // lit, textured room
+  EXPECT_LT(left_mean, 240.0);
+  EXPECT_GT(differ, static_cast<int>(images.left.pixels.size() / 4));  // another viewpoint
+}
+
+TEST_F(EurocSim, TruthIsTheRgbdTrajectoryThroughTheMounting) {
+  const EurocDataset d = EurocDataset::open(session().string());
+  const auto world = apps::loadWorld("", 0, 1);
+  const sim::SimSessionDataset sim_session(world, 0, apps::sessionConfig(30.0, 2, true, false));
+  const Eigen::Isometry3d T_B_C0 = d.calibration().cameras[0].T_B_C;
+  double worst_m = 0.0;
+  for (const GroundTruthState& s : d.groundTruth()) {
+    const Eigen::Isometry3d T_W_C = sim_session.trajectory().pose(s.timestamp_ns * 1e-9);
+    worst_m = std::max(worst_m, ((s.T_W_B * T_B_C0).matrix() - T_W_C.matrix()).norm());
+  }
+  EXPECT_LT(worst_m, 1e-9);
+  // groundtruth_body.txt holds the same body poses in TUM format.
+  const std::vector<tum::TimedPose> body =
+      tum::readTrajectory((session() / "groundtruth_body.txt").string());
+  ASSERT_EQ(body.size(), d.groundTruth().size());
+  for (std::size_t i = 0; i < body.size(); i += 10) {
+    EXPECT_NEAR(body[i].timestamp_s, d.groundTruth()[i].timestamp_ns * 1e-9, 1e-9);
+    EXPECT_LT((body[i].T_W_C.matrix() - d.groundTruth()[i].T_W_B.matrix()).norm(), 1e-7);
+  }
+  // The TUM RGB-D groundtruth.txt is cam0's trajectory: its first pose is at t = 0.
+  const std::vector<tum::TimedPose> tum =
+      tum::readTrajectory((session() / "groundtruth.txt").string());
+  ASSERT_FALSE(tum.empty());
+  EXPECT_NEAR(tum.front().timestamp_s, 0.0, 1e-9);
+  EXPECT_LT(((d.groundTruth().front().T_W_B * T_B_C0).matrix() - tum.front().T_W_C.matrix()).norm(),
+            1e-6);
+}
+
+// Strapdown integration of the recorded IMU (biases from the truth removed) from a truth state
+// lands on the truth 0.5 s later: the IMU, the mounting and the body truth agree.
+TEST_F(EurocSim, ImuIntegratesToTheTruth) {
+  const EurocDataset d = EurocDataset::open(session().string());
+  const std::vector<GroundTruthState>& gt = d.groundTruth();
+  const std::vector<ImuSample>& imu = d.imu();
+  const std::size_t first = 50, last = 150;  // t = 0.25 .. 0.75 s
+  const Eigen::Vector3d g_W(0.0, 0.0, -9.81);
+  Eigen::Matrix3d R = gt[first].T_W_B.linear();
+  Eigen::Vector3d p = gt[first].T_W_B.translation();
+  Eigen::Vector3d v = gt[first].velocity_W;
+  double travelled_m = 0.0;
+  for (std::size_t k = first; k < last; ++k) {
+    const double dt = (imu[k + 1].timestamp_ns - imu[k].timestamp_ns) * 1e-9;
+    // Midpoint of the two samples: second-order accurate at 200 Hz.
+    const Eigen::Vector3d w = 0.5 * (imu[k].gyro_rad_s + imu[k + 1].gyro_rad_s) - gt[k].gyro_bias;
+    const Eigen::Vector3d f0 = imu[k].accel_mps2 - gt[k].accel_bias;
+    const Eigen::Vector3d f1 = imu[k + 1].accel_mps2 - gt[k].accel_bias;
+    const Eigen::Matrix3d R1 = R * expSO3(w * dt);
+    const Eigen::Vector3d a = 0.5 * (R * f0 + R1 * f1) + g_W;
+    p += v * dt + 0.5 * a * dt * dt;
+    v += a * dt;
+    R = R1;
+    travelled_m += (gt[k + 1].T_W_B.translation() - gt[k].T_W_B.translation()).norm();
+  }
+  EXPECT_GT(travelled_m, 0.1);  // it moved (about 0.19 m): the check is not trivial
+  EXPECT_LT((p - gt[last].T_W_B.translation()).norm(), 0.005);  // measured 0.8 mm
+  EXPECT_LT((v - gt[last].velocity_W).norm(), 0.015);           // measured 3 mm/s
+  const double angle_rad = Eigen::AngleAxisd(R.transpose() * gt[last].T_W_B.linear()).angle();
+  EXPECT_LT(angle_rad, 0.005);
+}
+
+TEST(EurocGreyExposure, GainAndOffsetPerFrameSeeded) {
+  sim::AnalyticRayScene scene(1);
+  scene.add(sim::Plane{Eigen::Vector3d(0, 0, 2.0), Eigen::Vector3d(0, 0, -1), {180, 180, 180}});
+  sim::GreyCameraConfig config;
+  config.intrinsics.width_px = 40;
+  config.intrinsics.height_px = 30;
+  config.intrinsics.fx_px = config.intrinsics.fy_px = 40.0f;
+  config.intrinsics.cx_px = 19.5f;
+  config.intrinsics.cy_px = 14.5f;
+  config.pixel_noise_sigma = 0.0;
+  config.baseline_m = 0.05;
+  sim::Lighting light;
+  light.direction_W = Eigen::Vector3d(0, 0, -1);
+  const sim::GreyCamera flat(config);
+  config.exposure_gain_sigma = 0.1;
+  config.exposure_offset_sigma = 5.0;
+  const sim::GreyCamera noisy(config);
+  const Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  const sim::GreyFrame reference = flat.render(scene, pose, light, 7);
+  EXPECT_EQ(reference.exposure_gain, 1.0);
+  int gains_differ = 0;
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    const sim::GreyFrame f = noisy.render(scene, pose, light, seed);
+    EXPECT_EQ(f.eyes[0].pixels, noisy.render(scene, pose, light, seed).eyes[0].pixels);  // seeded
+    gains_differ += std::abs(f.exposure_gain - 1.0) > 1e-3;
+    for (std::size_t eye = 0; eye < 2; ++eye) {
+      for (std::size_t i = 0; i < f.eyes[eye].pixels.size(); i += 37) {
+        const double expected = std::clamp(
+            f.exposure_gain * reference.eyes[eye].pixels[i] + f.exposure_offset, 0.0, 255.0);
+        EXPECT_NEAR(f.eyes[eye].pixels[i], expected, 0.5 * f.exposure_gain + 0.51);
+      }
+    }
+  }
+  EXPECT_GE(gains_differ, 4);
+  config.exposure_gain_sigma = 0.6;
+  EXPECT_THROW(sim::GreyCamera{config}, InputError);
+}
+
+}  // namespace
+}  // namespace strata::euroc
