@@ -13,6 +13,7 @@
 #include "sim_command.h"
 #include "soak_command.h"
 #include "vio_command.h"
+#include "track_command.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"strata-bench: Strata benchmarks (JSON on stdout, progress on stderr)"};
@@ -35,6 +36,8 @@ int main(int argc, char** argv) {
   CLI::App* soak = strata::bench::addSoakCommand(app, soak_options);
   strata::bench::VioBenchOptions vio_options;
   CLI::App* vio = strata::bench::addVioCommand(app, vio_options);
+  strata::bench::TrackBenchOptions track_options;
+  CLI::App* track = strata::bench::addTrackCommand(app, track_options);
   strata::bench::FrontendBenchOptions frontend_options;
   CLI::App* frontend = strata::bench::addFrontendCommand(app, frontend_options);
   strata::bench::AllBenchOptions all_options;
@@ -53,6 +56,7 @@ int main(int argc, char** argv) {
   if (lcm->parsed()) return strata::bench::runLcmBench(lcm_options);
   if (soak->parsed()) return strata::bench::runSoakBench(soak_options);
   if (vio->parsed()) return strata::bench::runVioBench(vio_options);
+  if (track->parsed()) return strata::bench::runTrackBench(track_options);
   if (frontend->parsed()) return strata::bench::runFrontendBench(frontend_options);
   if (all->parsed()) return strata::bench::runAllBench(all_options);
   return 2;

@@ -16,7 +16,7 @@ get_property(strata_targets GLOBAL PROPERTY STRATA_INSTALLED_TARGETS)
 install(TARGETS ${strata_targets} strata_shaders strata_all EXPORT strataTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/strata)
-foreach(folder core vk map integrate raycast esdf mesh occupancy change select mapper)
+foreach(folder core vk map integrate raycast esdf mesh occupancy change select track mapper)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/engine/${folder}
           DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/strata
           FILES_MATCHING PATTERN "*.h" PATTERN "internal" EXCLUDE)

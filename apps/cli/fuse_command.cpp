@@ -49,6 +49,11 @@ CLI::App* addFuseCommand(CLI::App& app, FuseOptions& o) {
   fuse->add_flag_callback(
       "--no-free-space", [&o] { o.free_space = 0; }, "Allocate only the surfaces' band");
   fuse->add_flag("--quiet", o.quiet, "No progress bar");
+  fuse->add_flag("--track", o.track,
+                 "Track the frames against the map (frame-to-model ICP) instead of reading their "
+                 "poses; the first frame keeps the dataset's pose; lost frames are not fused");
+  fuse->add_option("--trajectory", o.trajectory_path,
+                   "With --track: write the estimated poses here (TUM: t tx ty tz qx qy qz qw)");
   fuse->add_option("--format", o.dataset_options.format, "Dataset layout: auto | tum | 7scenes")
       ->check(CLI::IsMember({"auto", "tum", "7scenes"}));
   fuse->add_option("--camera", o.dataset_options.camera_file,
@@ -71,6 +76,8 @@ int runFuse(FuseOptions o) {
     o.map.validate();
     if (o.frames < 0) throw InputError("--frames must be >= 0");
     if (o.esdf && o.reference) throw InputError("--esdf runs on the device: drop --reference");
+    if (o.track && o.reference) throw InputError("--track runs on the device: drop --reference");
+    if (!o.trajectory_path.empty() && !o.track) throw InputError("--trajectory needs --track");
     FuseSession session(o);
     const bool complete = session.run();
     const bool outputs_written = session.writeOutputs();

@@ -11,7 +11,9 @@
 #include "cli/esdf_slice.h"
 #include "cli/progress.h"
 #include "cli/shaded_view.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
+#include "io/tum_format.h"
 #include "eval/accuracy.h"
 #include "integrate/tsdf_integration.h"
 #include "io/image_io.h"
@@ -20,6 +22,7 @@
 #include "mesh/ply.h"
 #include "raycast/raycast.h"
 #include "sim/analytic_dataset.h"
+#include "trajectory/trajectory_error.h"
 
 namespace strata::apps {
 namespace {
@@ -66,7 +69,8 @@ FuseSession::FuseSession(const FuseOptions& options)
 
 FuseSession::~FuseSession() = default;
 
-void FuseSession::fuseFrame(const RgbdFrame& frame) {
+bool FuseSession::fuseFrame(const RgbdFrame& frame) {
+  if (options_.track) return trackFrame(frame);
   if (mapper_) {
     const FrameStats stats = mapper_->integrate(frame, dataset_->intrinsics()).fusion;
     totals_.upload_ms += stats.upload_ms;
@@ -83,6 +87,82 @@ void FuseSession::fuseFrame(const RgbdFrame& frame) {
                          std::chrono::steady_clock::now() - start).count();
   }
   last_pose_ = frame.T_W_C;
+  return true;
+}
+
+bool FuseSession::trackFrame(const RgbdFrame& frame) {
+  const bool first = mapper_->framesIntegrated() == 0 && tracked_ + lost_ == 0;
+  const TrackedFrame result = mapper_->trackAndIntegrate(frame, dataset_->intrinsics());
+  if (!first) {
+    ++tracked_;
+    track_wall_ms_ += result.track.wall_ms;
+    track_raycast_ms_ += result.track.raycast_ms;
+    track_equations_ms_ += result.track.equations_ms;
+    track_iterations_ += result.track.iterations;
+  }
+  if (!result.fused) {
+    ++lost_;
+    if (first_lost_reason_.empty()) first_lost_reason_ = frame.name + ": " + result.track.reason;
+    return false;
+  }
+  const FrameStats& stats = result.integrate.fusion;
+  totals_.upload_ms += stats.upload_ms;
+  totals_.normals_ms += stats.normals_ms;
+  totals_.allocate_ms += stats.allocate_ms;
+  totals_.integrate_ms += stats.integrate_ms;
+  totals_.wall_ms += stats.wall_ms;
+  totals_.touched_blocks += stats.touched_blocks;
+  fusion_wall_ms_ += stats.wall_ms;
+  if (options_.esdf) updateEsdf();
+  char stamp[32];
+  std::snprintf(stamp, sizeof(stamp), "%.6f ", frame.timestamp_s);
+  trajectory_ += stamp + tum::poseToTum(result.track.T_W_C) + "\n";
+  estimate_.push_back({frame.timestamp_s, result.track.T_W_C});
+  dataset_poses_.push_back({frame.timestamp_s, frame.T_W_C});
+  last_pose_ = result.track.T_W_C;
+  return true;
+}
+
+bool FuseSession::writeTrajectory() {
+  try {
+    const std::string text = "# timestamp tx ty tz qx qy qz qw (camera to world, strata fuse "
+                             "--track)\n" + trajectory_;
+    writeFileAtomically(options_.trajectory_path,
+                        std::vector<std::uint8_t>(text.begin(), text.end()));
+  } catch (const Error& e) {
+    std::fprintf(stderr, "strata fuse: the trajectory was not written: %s\n", e.what());
+    return false;
+  }
+  written_.push_back("trajectory " + options_.trajectory_path);
+  return true;
+}
+
+std::string FuseSession::trackingSummary() const {
+  if (!options_.track) return "";
+  std::ostringstream s;
+  s.precision(2);
+  s << std::fixed << " Tracking: " << tracked_ << " frames tracked, " << lost_
+    << " lost (not fused)";
+  if (!first_lost_reason_.empty()) s << ", first lost " << first_lost_reason_;
+  if (tracked_ > 0) {
+    const double n = static_cast<double>(tracked_);
+    s << "; " << track_wall_ms_ / n << " ms per frame tracking (device time: raycast "
+      << track_raycast_ms_ / n << " ms, normal equations " << track_equations_ms_ / n << " ms over "
+      << track_iterations_ / n << " iterations)";
+  }
+  if (fused_ > 0) {
+    s << ", " << fusion_wall_ms_ / static_cast<double>(fused_) << " ms per frame fusion (wall)";
+  }
+  s << ".";
+  if (estimate_.size() >= 3) {
+    // NOTE: the dataset's own poses (ignored by tracking after the first frame) as the truth.
+    const traj::TrajectoryError error =
+        traj::evaluateTrajectory(estimate_, dataset_poses_, traj::Alignment::kSE3);
+    s.precision(1);
+    s << " ATE against the dataset's poses (SE(3) aligned, " << error.matched << " poses): RMSE "
+      << error.ate_rmse_m * 1e3 << " mm, max " << error.ate_max_m * 1e3 << " mm.";
+  }
+  return s.str();
 }
 
 void FuseSession::updateEsdf() {
@@ -97,8 +177,9 @@ bool FuseSession::run() {
   ProgressBar progress("fusing", frame_indices_.size(), !options_.quiet);
   const auto start = std::chrono::steady_clock::now();
   for (std::size_t i = 0; i < frame_indices_.size(); ++i) {
+    bool fused = false;
     try {
-      fuseFrame(dataset_->load(frame_indices_[i]));
+      fused = fuseFrame(dataset_->load(frame_indices_[i]));
     } catch (const Error& e) {
       progress.finish();
       failure_ = e.what();
@@ -107,16 +188,17 @@ bool FuseSession::run() {
       std::fprintf(stderr, "strata fuse: keeping the %zu frames fused so far\n", fused_);
       break;
     }
-    ++fused_;
+    if (fused) ++fused_;
     std::ostringstream detail;
-    if (mapper_) {
+    if (mapper_ && fused_ > 0) {
       detail.precision(1);
       detail << std::fixed
              << (totals_.normals_ms + totals_.allocate_ms + totals_.integrate_ms) / fused_
              << " ms/frame on device";
       if (options_.esdf) detail << " + ESDF " << esdf_totals_.device_ms / fused_ << " ms";
+      if (options_.track) detail << ", " << lost_ << " lost";
     }
-    progress.update(fused_, detail.str());
+    progress.update(i + 1, detail.str());
   }
   progress.finish();
   wall_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -134,7 +216,8 @@ bool FuseSession::writeOutputs() {
   }
   if (!options_.render_path.empty() && fused_ > 0) renderView();
   const bool slice_written = options_.esdf_png_path.empty() || writeEsdfSlice();
-  return map_saved && slice_written;
+  const bool trajectory_written = options_.trajectory_path.empty() || writeTrajectory();
+  return map_saved && slice_written && trajectory_written;
 }
 
 bool FuseSession::saveMapFile() {
@@ -222,7 +305,8 @@ void FuseSession::printSummary() const {
   } else if (fused_ > 0) {
     s << "C++ reference: " << reference_ms_ / static_cast<double>(fused_) << " ms per frame. ";
   }
-  s << "peak host memory " << peakHostMemoryMiB() << " MiB." << esdfSummary();
+  s << "peak host memory " << peakHostMemoryMiB() << " MiB." << esdfSummary()
+    << trackingSummary();
   if (analytic_ != nullptr) {
     const float voxel_m = map_.config().voxel_size_m;
     const auto tsdf = eval::evaluateTsdf(map_, analytic_->scene(),

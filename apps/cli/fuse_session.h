@@ -6,6 +6,7 @@
 
 #include "cli/fuse_command.h"
 #include "io/dataset.h"
+#include "io/tum_format.h"
 #include "mapper/mapper.h"
 #include "map/tsdf_map.h"
 #include "mesh/mesh.h"
@@ -34,7 +35,8 @@ class FuseSession {
   void printSummary() const;
 
  private:
-  void fuseFrame(const RgbdFrame& frame);
+  /// False when the frame was not fused (lost by tracking).
+  bool fuseFrame(const RgbdFrame& frame);
   void updateEsdf();
   void renderView();
   bool writeEsdfSlice();
@@ -43,6 +45,10 @@ class FuseSession {
   /// What a failed save left at the map path (the previous file, or nothing).
   std::string previousMapNote() const;
   std::string esdfSummary() const;
+  /// Tracks the frame and fuses it when tracking is ok (--track).
+  bool trackFrame(const RgbdFrame& frame);
+  bool writeTrajectory();
+  std::string trackingSummary() const;
 
   FuseOptions options_;
   std::unique_ptr<Dataset> dataset_;
@@ -62,6 +68,17 @@ class FuseSession {
   std::string failure_;
   std::vector<std::string> written_;
   Eigen::Isometry3d last_pose_ = Eigen::Isometry3d::Identity();
+  // --track: totals over the tracked frames (the first frame is not tracked), the trajectory.
+  std::size_t tracked_ = 0;
+  std::size_t lost_ = 0;
+  std::string first_lost_reason_;
+  double track_wall_ms_ = 0.0;
+  double track_raycast_ms_ = 0.0;
+  double track_equations_ms_ = 0.0;
+  int track_iterations_ = 0;
+  double fusion_wall_ms_ = 0.0;
+  std::string trajectory_;  // TUM lines of the fused frames
+  std::vector<tum::TimedPose> estimate_, dataset_poses_;  // of the fused frames, for the ATE
 };
 
 }  // namespace strata::apps

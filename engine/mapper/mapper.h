@@ -34,6 +34,7 @@
 #include "mesh/mesh.h"
 #include "raycast/raycast.h"
 #include "select/keyframe_scorer.h"
+#include "track/rgbd_tracker.h"
 #include "vk/vk.h"
 
 namespace strata {
@@ -63,6 +64,12 @@ struct SessionResult {
   std::size_t frames = 0;                         // fused in the session
 };
 
+/// What trackAndIntegrate() did with one frame.
+struct TrackedFrame {
+  TrackResult track;          // pose (camera to world), status, figures
+  bool fused = false;         // false when the frame was lost (the map is unchanged)
+  IntegrateStats integrate;   // of the fusion, when fused
+};
 
 class Mapper {
  public:
@@ -113,6 +120,17 @@ class Mapper {
   /// Renders the live layer from T_W_C (device raycast).
   RaycastImage render(const CameraIntrinsics& camera, const Eigen::Isometry3d& T_W_C,
                       double* device_ms = nullptr);
+
+  /// Tracks `frame` (its depth; frame.T_W_C is ignored) against the live layer from T_W_C_guess:
+  /// frame-to-model ICP (track/rgbd_tracker.h, config.track). The map is not changed.
+  TrackResult track(const RgbdFrame& frame, const CameraIntrinsics& intrinsics,
+                    const Eigen::Isometry3d& T_W_C_guess);
+  /// Odometry and fusion of a sequence without poses: the guess is the constant-velocity
+  /// prediction of the frames tracked before (MotionModel); a frame tracked ok is fused at its
+  /// estimate, a lost one is not fused (and the next frame is tried from the last good pose).
+  /// The first call fuses at frame.T_W_C when the map is empty (that frame defines the world:
+  /// give identity, or a known first pose); on a map that is not empty it tracks from it.
+  TrackedFrame trackAndIntegrate(const RgbdFrame& frame, const CameraIntrinsics& intrinsics);
 
   /// Opens a session (ending an open one first). Returns its index (0, 1, ...).
   int beginSession();
@@ -173,6 +191,8 @@ class Mapper {
   MapperConfig config_;
   vk::Context& context_;
   std::unique_ptr<Impl> impl_;
+  std::unique_ptr<RgbdTracker> tracker_;  // made on the first track()
+  MotionModel motion_;                    // of trackAndIntegrate()
   std::size_t frames_ = 0;
   std::size_t session_frames_ = 0;
   int sessions_ = 0;

@@ -14,6 +14,7 @@ void MapperConfig::validate() const {
     objects.validate();
   }
   if (keyframe_scoring) scorer.validate();
+  track.validate();
 }
 
 std::string MapperConfig::describe() const {

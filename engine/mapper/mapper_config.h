@@ -9,6 +9,7 @@
 #include "map/map_config.h"
 #include "select/keyframe_scorer.h"
 #include "select/keyframe_selection.h"
+#include "track/track_config.h"
 
 namespace strata {
 
@@ -47,6 +48,10 @@ struct MapperConfig {
   selection::ScorerConfig scorer;
   /// The decision of scoreKeyframe(): a frame is a keyframe when a metric passes its threshold.
   selection::Thresholds keyframe_thresholds;
+
+  /// Tracking of frames without poses (Mapper::track, trackAndIntegrate): pyramid, gates,
+  /// failure rules (track/track_config.h). Used only when those are called.
+  TrackConfig track;
 
   /// Throws InputError naming the bad field (of this struct or of a nested config).
   void validate() const;

@@ -24,9 +24,8 @@ void RaycastKernel::ensureOutputs(std::size_t pixel_count) {
   pixel_capacity_ = pixel_count;
 }
 
-RaycastImage RaycastKernel::run(DeviceTsdfMap& map, const CameraIntrinsics& intrinsics,
-                                const Eigen::Isometry3d& T_W_C, const RaycastOptions& options,
-                                double* device_ms) {
+double RaycastKernel::render(DeviceTsdfMap& map, const CameraIntrinsics& intrinsics,
+                             const Eigen::Isometry3d& T_W_C, const RaycastOptions& options) {
   intrinsics.validate();
   validatePose(T_W_C, "raycast camera");
   const FrameCamera camera = FrameCamera::from(intrinsics, T_W_C);
@@ -50,10 +49,16 @@ RaycastImage RaycastKernel::run(DeviceTsdfMap& map, const CameraIntrinsics& intr
 
   vk::DescriptorSet set = vk::DescriptorSet::create(
       context_, pipeline_, {&map.hashEntries(), &depth_out_, &normal_out_, &color_out_});
-  const double ms =
-      dispatchTimed(context_, pipeline_, set, &push, sizeof(push), (push.image_size[0] + 15) / 16,
-                    (push.image_size[1] + 15) / 16, timer_);
+  return dispatchTimed(context_, pipeline_, set, &push, sizeof(push),
+                       (push.image_size[0] + 15) / 16, (push.image_size[1] + 15) / 16, timer_);
+}
+
+RaycastImage RaycastKernel::run(DeviceTsdfMap& map, const CameraIntrinsics& intrinsics,
+                                const Eigen::Isometry3d& T_W_C, const RaycastOptions& options,
+                                double* device_ms) {
+  const double ms = render(map, intrinsics, T_W_C, options);
   if (device_ms != nullptr) *device_ms = ms;
+  const std::size_t pixels = static_cast<std::size_t>(intrinsics.width_px) * intrinsics.height_px;
 
   RaycastImage out{DepthImage(intrinsics.width_px, intrinsics.height_px),
                    std::vector<Eigen::Vector3f>(pixels, Eigen::Vector3f::Zero()),

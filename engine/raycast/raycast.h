@@ -47,6 +47,12 @@ class RaycastKernel {
   RaycastImage run(DeviceTsdfMap& map, const CameraIntrinsics& intrinsics,
                    const Eigen::Isometry3d& T_W_C, const RaycastOptions& options = {},
                    double* device_ms = nullptr);
+  /// The same march, outputs left on the device (depthBuffer(), normalBuffer(): float z and
+  /// vec4 world normal with w = 1 on a hit, row-major); returns the device time in ms.
+  double render(DeviceTsdfMap& map, const CameraIntrinsics& intrinsics,
+                const Eigen::Isometry3d& T_W_C, const RaycastOptions& options = {});
+  const vk::Buffer& depthBuffer() const { return depth_out_; }
+  const vk::Buffer& normalBuffer() const { return normal_out_; }
 
  private:
   void ensureOutputs(std::size_t pixel_count);

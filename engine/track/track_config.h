@@ -1,0 +1,71 @@
+#pragma once
+// Configuration and result of RGB-D tracking (rgbd_tracker.h). Units: metres, degrees, pixels.
+// validate() throws InputError naming the field.
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace strata {
+
+struct TrackConfig {
+  /// Pyramid levels of the live depth (level l has 2^-l the resolution). More levels widen the
+  /// basin of convergence; each level costs one pass of iterations.
+  int levels = 3;
+  /// Gauss-Newton iterations per level, coarsest first (size must equal `levels`).
+  std::vector<int> iterations{4, 5, 10};
+  /// The model is raycast at the resolution of this pyramid level (0: the frame's; 1: half, a
+  /// quarter of the rays). The raycast is the costliest step; every live level associates with it.
+  int model_level = 1;
+  /// Pyramid: a coarse depth is the mean of the valid depths of its 2x2 block within this of the
+  /// nearest one (mixing foreground and background would invent surfaces).
+  float pyramid_depth_threshold_m = 0.05f;
+  /// Projective data association: a live point pairs with the model pixel it projects to when
+  /// they are closer than this and their normals differ by less than max_normal_angle_deg.
+  float max_distance_m = 0.10f;
+  float max_normal_angle_deg = 30.0f;
+  /// Huber threshold on |r|: residuals beyond it are down-weighted by huber_m / |r| (0: plain
+  /// least squares). About twice the depth noise.
+  float huber_m = 0.01f;
+  /// The iterations of a level stop when the update is smaller than this (translation metres +
+  /// rotation radians, 2-norm).
+  double convergence_update = 1e-6;
+
+  // Failure rules: a frame that breaks one is lost (and must not be fused).
+  /// Inliers at the finest level over the valid live pixels of that level.
+  double min_inlier_fraction = 0.2;
+  /// Absolute minimum of inliers at the finest level.
+  std::uint32_t min_inliers = 200;
+  /// RMS of the inliers' residuals at the finest level.
+  double max_rms_m = 0.03;
+  /// Smallest eigenvalue of JᵀJ / inliers (J rows [n, p × n], camera frame, metres): below it
+  /// the geometry does not constrain all six degrees of freedom (a plane, a corridor).
+  double min_eigenvalue = 1e-4;
+  /// Largest accepted difference between the result and the guess.
+  double max_translation_jump_m = 0.2;
+  double max_rotation_jump_deg = 20.0;
+
+  void validate() const;
+};
+
+enum class TrackStatus : std::uint8_t { kOk = 0, kLost = 1 };
+
+/// The outcome of one tracked frame.
+struct TrackResult {
+  TrackStatus status = TrackStatus::kLost;
+  std::string reason;  // why the frame is lost ("" when ok)
+  Eigen::Isometry3d T_W_C = Eigen::Isometry3d::Identity();  // estimate (the guess when lost early)
+  std::uint32_t inliers = 0;         // finest level, last evaluation
+  std::uint32_t valid_pixels = 0;    // live pixels with depth and normal at the finest level
+  double inlier_fraction = 0.0;
+  double rms_m = 0.0;                // inliers' residual RMS, finest level
+  double min_eigenvalue = 0.0;       // of JᵀJ / inliers, finest level
+  int iterations = 0;                // over all levels
+  double raycast_ms = 0.0;           // device time of the model raycast
+  double equations_ms = 0.0;         // device time of the normal equations, summed
+  double wall_ms = 0.0;              // whole track() call
+
+  bool ok() const { return status == TrackStatus::kOk; }
+};
+
+}  // namespace strata

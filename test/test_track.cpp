@@ -1,0 +1,248 @@
+// RGB-D tracking: the device normal equations against the C++ reference, poses recovered on the
+// simulated room (a known offset, a short sequence against the simulator's exact truth), and
+// lost frames refused without touching the map.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+#include "cli/fuse_command.h"
+#include "fusion_fixture.h"
+#include "io/tum_format.h"
+#include "mapper/mapper.h"
+#include "sim/analytic_dataset.h"
+#include "sim/default_scene.h"
+#include "track/gauss_newton.h"
+#include "track/live_pyramid.h"
+#include "track/normal_equations.h"
+#include "track/rgbd_tracker.h"
+
+namespace strata {
+namespace {
+
+CameraIntrinsics smallCamera() {
+  CameraIntrinsics in;
+  in.width_px = 320;
+  in.height_px = 240;
+  in.fx_px = 262.5f;
+  in.fy_px = 262.5f;
+  in.cx_px = 159.5f;
+  in.cy_px = 119.5f;
+  return in;
+}
+
+sim::AnalyticDataset roomDataset(std::vector<Eigen::Isometry3d> poses) {
+  sim::AnalyticDatasetConfig config;
+  config.intrinsics = smallCamera();
+  config.render_color = false;
+  return sim::AnalyticDataset(sim::makeDefaultScene(), std::move(poses), config);
+}
+
+Eigen::Isometry3d perturbed(const Eigen::Isometry3d& T, const Eigen::Vector3d& t_m,
+                            const Eigen::Vector3d& axis, double angle_deg) {
+  Eigen::Isometry3d delta = Eigen::Isometry3d::Identity();
+  delta.linear() = Eigen::AngleAxisd(angle_deg * M_PI / 180.0, axis.normalized()).matrix();
+  delta.translation() = t_m;
+  return T * delta;
+}
+
+double translationError(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+  return (a.translation() - b.translation()).norm();
+}
+
+TEST(TrackPyramid, HalfDepthAveragesOnlyTheNearSurface) {
+  MapConfig map;
+  DepthImage depth(4, 2, 0.0f);
+  depth.at(0, 0) = 1.00f;
+  depth.at(1, 0) = 1.02f;
+  depth.at(0, 1) = 3.00f;  // background behind an edge: must not be mixed in
+  depth.at(1, 1) = 0.0f;   // invalid
+  depth.at(2, 0) = 0.0f;   // a block with no valid depth
+  const DepthImage half = halfDepth(depth, map, 0.05f);
+  ASSERT_EQ(half.width_px, 2);
+  ASSERT_EQ(half.height_px, 1);
+  EXPECT_NEAR(half.at(0, 0), 1.01f, 1e-6f);
+  EXPECT_EQ(half.at(1, 0), 0.0f);
+  const CameraIntrinsics coarse = halfIntrinsics(smallCamera());
+  EXPECT_FLOAT_EQ(coarse.cx_px, 79.5f);
+  EXPECT_FLOAT_EQ(coarse.fx_px, 131.25f);
+}
+
+TEST(TrackNormalEquations, DeviceMatchesReferenceAndVanishesAtTheTruth) {
+  const Eigen::Isometry3d T0 = sim::makeDefaultTrajectory(10)[0];
+  const Eigen::Isometry3d T1 = perturbed(T0, {0.02, -0.01, 0.015}, {1, 2, 0.5}, 1.5);
+  const sim::AnalyticDataset dataset = roomDataset({T0, T1});
+  MapperConfig config;
+  Mapper mapper(config, test::sharedContext());
+  mapper.integrate(dataset.load(0), dataset.intrinsics());
+  const RaycastImage model = mapper.render(dataset.intrinsics(), T0);
+  const ModelView model_view{dataset.intrinsics(), T0, &model.depth.depth_m, &model.normal_W,
+                             &model.hit};
+  const RgbdFrame live = dataset.load(1);
+  const std::vector<LiveLevel> pyramid =
+      buildLivePyramid(live.depth, dataset.intrinsics(), config.map, 3, 0.05f);
+  std::vector<LiveView> views;
+  for (const LiveLevel& l : pyramid) {
+    views.push_back({l.intrinsics.width_px, l.intrinsics.height_px, &l.vertex_C, &l.normal_C});
+  }
+  NormalEquationsKernel kernel(test::sharedContext());
+  kernel.setLive(views);
+  kernel.setModel(model_view);
+  const AssociationGates gates;
+  for (const Eigen::Isometry3d& at : {T0, T1}) {
+    for (int level = 0; level < 3; ++level) {
+      const NormalEquations device = kernel.run(level, at, gates);
+      const NormalEquations reference =
+          normalEquationsReference(views[static_cast<std::size_t>(level)], model_view, at, gates);
+      ASSERT_GT(reference.inliers, 100u) << "level " << level;
+      // A pixel on a gate's edge may fall either way under float rounding.
+      EXPECT_LE(std::abs(static_cast<double>(device.inliers) - reference.inliers),
+                2.0 + 1e-3 * reference.inliers)
+          << "level " << level;
+      double scale = 0.0;
+      for (double v : reference.JtJ) scale = std::max(scale, std::abs(v));
+      double worst = 0.0;
+      for (std::size_t k = 0; k < 21; ++k) {
+        EXPECT_NEAR(device.JtJ[k], reference.JtJ[k], 1e-5 * scale) << "JtJ " << k;
+        worst = std::max(worst, std::abs(device.JtJ[k] - reference.JtJ[k]) / scale);
+      }
+      std::printf("level %d: inliers %u vs %u, largest JtJ difference %.1e of the largest entry\n",
+                  level, device.inliers, reference.inliers, worst);
+      double r_scale = 1e-6;
+      for (double v : reference.Jtr) r_scale = std::max(r_scale, std::abs(v));
+      for (std::size_t k = 0; k < 6; ++k) {
+        EXPECT_NEAR(device.Jtr[k], reference.Jtr[k], 1e-5 * r_scale) << "Jtr " << k;
+      }
+      EXPECT_NEAR(device.residual_sq, reference.residual_sq, 1e-5 * reference.residual_sq + 1e-12);
+    }
+  }
+  // At the true pose the live points lie on the model: residuals within the map's resolution,
+  // nearly every valid live pixel an inlier.
+  const NormalEquations at_truth = kernel.run(0, T1, gates);
+  EXPECT_LT(std::sqrt(at_truth.residual_sq / at_truth.inliers), 0.004);
+  EXPECT_GT(at_truth.inliers, 0.8 * pyramid[0].valid);
+  const NormalEquations off = kernel.run(0, T0, gates);
+  EXPECT_GT(off.residual_sq / off.inliers, 4.0 * at_truth.residual_sq / at_truth.inliers);
+}
+
+TEST(TrackRgbd, RecoversAKnownOffset) {
+  const Eigen::Isometry3d T0 = sim::makeDefaultTrajectory(10)[0];
+  const Eigen::Isometry3d T1 = perturbed(T0, {0.04, 0.02, -0.03}, {0.3, 1, 0.2}, 3.0);
+  const sim::AnalyticDataset dataset = roomDataset({T0, T1});
+  Mapper mapper(MapperConfig{}, test::sharedContext());
+  mapper.integrate(dataset.load(0), dataset.intrinsics());
+  const TrackResult result = mapper.track(dataset.load(1), dataset.intrinsics(), T0);
+  ASSERT_TRUE(result.ok()) << result.reason;
+  EXPECT_LT(translationError(result.T_W_C, T1), 0.003);
+  EXPECT_LT(rotationAngleDeg(result.T_W_C.inverse() * T1), 0.15);
+  EXPECT_GT(result.inlier_fraction, 0.6);  // the moved view sees some unmapped surface
+  EXPECT_LT(result.rms_m, 0.005);
+  EXPECT_GT(result.iterations, 3);
+}
+
+TEST(TrackRgbd, ShortRoomSequenceWithinACentimetre) {
+  const std::vector<Eigen::Isometry3d> truth = sim::makeDefaultTrajectory(30);
+  const sim::AnalyticDataset dataset = roomDataset(truth);
+  Mapper mapper(MapperConfig{}, test::sharedContext());
+  double sum_sq = 0.0;
+  double worst = 0.0;
+  for (std::size_t i = 0; i < truth.size(); ++i) {
+    RgbdFrame frame = dataset.load(i);
+    // Only the first pose is given (it defines the world); the rest must come from tracking.
+    if (i > 0) frame.T_W_C = Eigen::Isometry3d::Identity();
+    const TrackedFrame tracked = mapper.trackAndIntegrate(frame, dataset.intrinsics());
+    ASSERT_TRUE(tracked.fused) << "frame " << i << ": " << tracked.track.reason;
+    const double e = translationError(tracked.track.T_W_C, truth[i]);
+    sum_sq += e * e;
+    worst = std::max(worst, e);
+  }
+  const double rmse = std::sqrt(sum_sq / truth.size());
+  std::printf("room sequence: translation RMSE %.2f mm, worst %.2f mm\n", rmse * 1e3, worst * 1e3);
+  EXPECT_LE(rmse, 0.01) << "worst " << worst;
+  EXPECT_EQ(mapper.framesIntegrated(), truth.size());
+}
+
+TEST(TrackRgbd, BadFramesAreLostAndNotFused) {
+  const std::vector<Eigen::Isometry3d> arc = sim::makeDefaultTrajectory(10);
+  // A frame from elsewhere: the camera moved 1.5 m and turned away, the guess still at the map.
+  const Eigen::Isometry3d elsewhere =
+      perturbed(arc[0], {1.5, 0.0, 0.8}, {0, 1, 0}, 70.0);
+  const sim::AnalyticDataset dataset = roomDataset({arc[0], elsewhere});
+  Mapper mapper(MapperConfig{}, test::sharedContext());
+  ASSERT_TRUE(mapper.trackAndIntegrate(dataset.load(0), dataset.intrinsics()).fused);
+  const std::uint32_t blocks = mapper.blockCount();
+  const TsdfMap before = mapper.download();
+
+  RgbdFrame blank = dataset.load(0);
+  std::fill(blank.depth.depth_m.begin(), blank.depth.depth_m.end(), 0.0f);
+  RgbdFrame garbage = dataset.load(0);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> depth(0.3f, 4.5f);
+  for (float& d : garbage.depth.depth_m) d = depth(rng);
+  // A flat wall 1.2 m ahead that the map does not hold: smooth, valid normals everywhere.
+  RgbdFrame wall = dataset.load(0);
+  std::fill(wall.depth.depth_m.begin(), wall.depth.depth_m.end(), 1.2f);
+  for (const RgbdFrame& bad : {blank, garbage, wall, dataset.load(1)}) {
+    const TrackedFrame tracked = mapper.trackAndIntegrate(bad, dataset.intrinsics());
+    EXPECT_FALSE(tracked.fused);
+    EXPECT_FALSE(tracked.track.ok());
+    EXPECT_FALSE(tracked.track.reason.empty());
+    std::printf("lost: %s\n", tracked.track.reason.c_str());
+  }
+  EXPECT_EQ(mapper.framesIntegrated(), 1u);
+  EXPECT_EQ(mapper.blockCount(), blocks);
+  const TsdfMap after = mapper.download();
+  for (const auto& [index, block] : before.blocks()) {
+    const auto* other = after.findBlock(index);
+    ASSERT_NE(other, nullptr);
+    for (std::size_t v = 0; v < block.size(); ++v) {
+      ASSERT_EQ(block[v].weight, (*other)[v].weight);
+      ASSERT_EQ(block[v].tsdf_m, (*other)[v].tsdf_m);
+    }
+  }
+  // The tracker recovers from the last good pose: the first frame again is tracked ok.
+  const TrackedFrame again = mapper.trackAndIntegrate(dataset.load(0), dataset.intrinsics());
+  EXPECT_TRUE(again.fused) << again.track.reason;
+  EXPECT_LT(translationError(again.track.T_W_C, arc[0]), 0.003);
+}
+
+TEST(TrackRgbd, AFloorAloneIsIllConditioned) {
+  // Looking straight down at the bare floor: a plane leaves in-plane translation and the
+  // rotation about its normal unconstrained.
+  Eigen::Isometry3d down = Eigen::Isometry3d::Identity();
+  down.linear() << 1, 0, 0, 0, -1, 0, 0, 0, -1;  // camera z = world -z
+  down.translation() = Eigen::Vector3d(1.5, -1.5, 1.0);
+  const sim::AnalyticDataset dataset = roomDataset({down});
+  Mapper mapper(MapperConfig{}, test::sharedContext());
+  mapper.integrate(dataset.load(0), dataset.intrinsics());
+  const Eigen::Isometry3d guess = perturbed(down, {0.02, 0.01, 0.0}, {0, 0, 1}, 1.0);
+  const TrackResult result = mapper.track(dataset.load(0), dataset.intrinsics(), guess);
+  std::printf("floor: %s (smallest eigenvalue %.2e)\n", result.reason.c_str(),
+              result.min_eigenvalue);
+  EXPECT_FALSE(result.ok());
+  EXPECT_NE(result.reason.find("ill-conditioned"), std::string::npos) << result.reason;
+}
+
+TEST(TrackCli, FuseTrackWritesTheEstimatedTrajectory) {
+  const std::string path = ::testing::TempDir() + "/track_cli_trajectory.txt";
+  std::remove(path.c_str());
+  apps::FuseOptions options;  // the built-in analytic scene
+  options.frames = 6;
+  options.track = true;
+  options.trajectory_path = path;
+  options.quiet = true;
+  ASSERT_EQ(apps::runFuse(options), 0);
+  const std::vector<tum::TimedPose> poses = tum::readTrajectory(path);
+  ASSERT_EQ(poses.size(), 6u);
+  const sim::AnalyticDataset truth;
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    EXPECT_LT(translationError(poses[i].T_W_C, truth.poses()[i]), 0.005) << "frame " << i;
+    EXPECT_NEAR(poses[i].timestamp_s, truth.load(i).timestamp_s, 1e-6);
+  }
+  options.reference = true;  // tracking runs on the device only
+  EXPECT_EQ(apps::runFuse(options), 2);
+}
+
+}  // namespace
+}  // namespace strata
