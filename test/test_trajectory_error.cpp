@@ -138,6 +138,25 @@ TEST(TrajectoryError, RpeOfAHeadingDriftIsThatDriftPerMetre) {
   EXPECT_NEAR(e.ate_rmse_m, 0.0, 1e-12);  // positions are exact; only headings drift
 }
 
+TEST(TrajectoryError, AStraightPathTakesItsRotationFromTheOrientations) {
+  // Positions on a line leave the rotation about it free; orientations pin it.
+  const auto truth = line();
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  T.translation() = Eigen::Vector3d(0.3, -1.0, 2.0);
+  const auto estimate = transformed(truth, T, 1.0);
+  const TrajectoryError e = evaluateTrajectory(estimate, truth, Alignment::kSE3);
+  EXPECT_TRUE(e.aligned.rotation_from_orientations);
+  EXPECT_TRUE(e.aligned.T_gt_est.isApprox(T.inverse(), 1e-9));
+  EXPECT_NEAR(e.ate_rmse_m, 0.0, 1e-9);
+  EXPECT_NEAR(e.rotation_rmse_deg, 0.0, 1e-6);
+  const TrajectoryError sim3 = evaluateTrajectory(transformed(truth, T, 2.0), truth, Alignment::kSim3);
+  EXPECT_NEAR(sim3.scale, 0.5, 1e-9);
+  EXPECT_NEAR(sim3.rotation_rmse_deg, 0.0, 1e-6);
+  EXPECT_FALSE(evaluateTrajectory(circle(64, 2.0), circle(64, 2.0), Alignment::kSE3)
+                   .aligned.rotation_from_orientations);
+}
+
 TEST(TrajectoryError, FirstPoseAlignmentMeasuresDriftFromTheStart) {
   const auto truth = line();
   auto estimate = transformed(truth, kSomeTransform, 1.0);

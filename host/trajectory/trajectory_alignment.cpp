@@ -10,6 +10,36 @@ namespace {
 
 // Below this RMS spread (metres) a trajectory has no extent to fit a scale to.
 constexpr double kMinSim3Spread_m = 1e-3;
+// Positions fix the rotation about every axis only when they spread across a plane: below this
+// ratio of the second to the first principal spread (a near-straight path) the rotation comes
+// from the orientations instead.
+constexpr double kMinPlanarSpreadRatio = 0.1;
+
+double planarSpreadRatio(const Eigen::Matrix3Xd& p) {
+  const Eigen::Matrix3Xd centred = p.colwise() - p.rowwise().mean();
+  const Eigen::Vector3d sv = Eigen::JacobiSVD<Eigen::Matrix3d>(centred * centred.transpose()).singularValues();
+  return sv[0] > 0.0 ? std::sqrt(sv[1] / sv[0]) : 0.0;
+}
+
+/// The rotation nearest (chordal L2) to the mean of R_gt_i * R_est_i^T.
+Eigen::Matrix3d meanRotation(const std::vector<Eigen::Isometry3d>& estimate,
+                             const std::vector<Eigen::Isometry3d>& truth) {
+  Eigen::Matrix3d sum = Eigen::Matrix3d::Zero();
+  for (std::size_t i = 0; i < estimate.size(); ++i) sum += truth[i].linear() * estimate[i].linear().transpose();
+  Eigen::JacobiSVD<Eigen::Matrix3d> svd(sum, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d D = Eigen::Matrix3d::Identity();
+  D(2, 2) = (svd.matrixU() * svd.matrixV().transpose()).determinant() < 0 ? -1.0 : 1.0;
+  return svd.matrixU() * D * svd.matrixV().transpose();
+}
+
+/// Scale and translation for a given rotation, least squares over the positions.
+void fitScaleAndTranslation(const Eigen::Matrix3Xd& p_est, const Eigen::Matrix3Xd& p_gt,
+                            bool with_scale, SimilarityTransform* s) {
+  const Eigen::Vector3d mu_est = p_est.rowwise().mean(), mu_gt = p_gt.rowwise().mean();
+  const Eigen::Matrix3Xd rotated = s->T_gt_est.linear() * (p_est.colwise() - mu_est);
+  s->scale = with_scale ? (p_gt.colwise() - mu_gt).cwiseProduct(rotated).sum() / rotated.squaredNorm() : 1.0;
+  s->T_gt_est.translation() = mu_gt - s->scale * (s->T_gt_est.linear() * mu_est);
+}
 
 Eigen::Matrix3Xd positions(const std::vector<Eigen::Isometry3d>& poses) {
   Eigen::Matrix3Xd p(3, static_cast<Eigen::Index>(poses.size()));
@@ -74,8 +104,10 @@ SimilarityTransform alignTrajectory(const std::vector<Eigen::Isometry3d>& estima
     throw InputError("Sim(3) alignment: the estimated trajectory has no extent (positions within " +
                      std::to_string(kMinSim3Spread_m * 1e3) + " mm), so its scale is unobservable");
   }
-  if (p_est.cols() == 1) {  // NOTE: one pair: Umeyama's covariance is zero; translation only
-    s.T_gt_est.translation() = p_gt.col(0) - p_est.col(0);
+  if (planarSpreadRatio(p_est) < kMinPlanarSpreadRatio) {
+    s.rotation_from_orientations = true;
+    s.T_gt_est.linear() = meanRotation(estimate, truth);
+    fitScaleAndTranslation(p_est, p_gt, with_scale, &s);
     return s;
   }
   const Eigen::Matrix4d T = Eigen::umeyama(p_est, p_gt, with_scale);

@@ -23,6 +23,8 @@ const char* alignmentName(Alignment alignment);
 struct SimilarityTransform {
   Eigen::Isometry3d T_gt_est = Eigen::Isometry3d::Identity();  // rotation and translation
   double scale = 1.0;
+  /// True when the rotation came from the orientations (a near-straight path, see below).
+  bool rotation_from_orientations = false;
 
   Eigen::Vector3d apply(const Eigen::Vector3d& p_est) const;
   /// The pose in the truth's world: rotation T_gt_est.linear() * R, position apply(t).
@@ -31,10 +33,12 @@ struct SimilarityTransform {
 
 /// The transform of `alignment` taking matched estimate poses onto matched truth poses (same
 /// length, index i of one matches index i of the other, at least one pair). kSE3 and kSim3 fit the
-/// positions by Umeyama's closed form (Eigen::umeyama); with fewer than 3 poses or positions that
-/// span no plane the rotation about the degenerate direction is arbitrary but the fitted error is
-/// still the least-squares one. Throws InputError for an empty or uneven input, and for kSim3 when
-/// the estimate has no extent (all positions within 1 mm of their mean: scale unobservable).
+/// positions by Umeyama's closed form (Eigen::umeyama). Positions along a near-straight path
+/// (second principal spread under 10 % of the first) leave the rotation about the path's axis to
+/// noise, so there the rotation is the chordal mean of R_gt_i * R_est_i^T and only scale and
+/// translation are fitted to the positions. Throws InputError for an empty or uneven input, and
+/// for kSim3 when the estimate has no extent (all positions within 1 mm of their mean: scale
+/// unobservable).
 SimilarityTransform alignTrajectory(const std::vector<Eigen::Isometry3d>& estimate,
                                     const std::vector<Eigen::Isometry3d>& truth,
                                     Alignment alignment);
