@@ -122,8 +122,10 @@ std::vector<Factor> Window::buildFactors(const SolveSettings& s) const {
     }
   }
   const Eigen::Isometry3d T_Cr_Cl = rig_.T_B_Cr.inverse() * rig_.T_B_Cl;
-  for (auto& [track, lc] : self->landmarks) {
-    Landmark& l = lc;
+  for (auto& entry : self->landmarks) {
+    // NOTE: not a structured binding: clang 14 cannot capture one in the lambda below.
+    const auto track = entry.first;
+    Landmark& l = entry.second;
     if (!(l.rho > 0.0)) continue;
     const bool seen_elsewhere =
         std::any_of(l.observations.begin(), l.observations.end(),
