@@ -1,7 +1,6 @@
 // strata: the command-line entry point. With no subcommand it runs the main job on the built-in
 // default data: the multi-session demo on the shipped single-room world (strata_out/).
 #include <CLI/CLI.hpp>
-
 #include <cstdio>
 
 #include "cli/demo_command.h"
@@ -11,6 +10,7 @@
 #include "cli/fuse_command.h"
 #include "cli/map_command.h"
 #include "cli/mesh_command.h"
+#include "cli/odometry_command.h"
 #include "cli/select_command.h"
 #include "cli/sim_command.h"
 #include "core/error.h"
@@ -31,8 +31,10 @@ int listDevices() {
 }
 
 int runDefault() {
-  std::printf("strata: no command given; running the multi-session demo on the shipped room "
-              "(see `strata --help` for fuse, sim, demo, diff, mesh, esdf, select, eval-trajectory, map, devices)\n");
+  std::printf(
+      "strata: no command given; running the multi-session demo on the shipped room "
+      "(see `strata --help` for fuse, sim, demo, diff, mesh, esdf, select, eval-trajectory, map, "
+      "odometry, devices)\n");
   return strata::apps::runDemo(strata::apps::DemoOptions{});
 }
 
@@ -56,10 +58,11 @@ int main(int argc, char** argv) {
   strata::apps::SelectOptions select_options;
   CLI::App* select_cmd = strata::apps::addSelectCommand(app, select_options);
   strata::apps::EvalTrajectoryOptions eval_trajectory_options;
-  CLI::App* eval_trajectory =
-      strata::apps::addEvalTrajectoryCommand(app, eval_trajectory_options);
+  CLI::App* eval_trajectory = strata::apps::addEvalTrajectoryCommand(app, eval_trajectory_options);
   strata::apps::MapOptions map_options;
   CLI::App* map = strata::apps::addMapCommand(app, map_options);
+  strata::apps::OdometryOptions odometry_options;
+  CLI::App* odometry = strata::apps::addOdometryCommand(app, odometry_options);
   CLI::App* devices = app.add_subcommand("devices", "List the Vulkan devices");
   try {
     app.parse(argc, argv);
@@ -75,6 +78,7 @@ int main(int argc, char** argv) {
   if (select_cmd->parsed()) return strata::apps::runSelect(select_options);
   if (eval_trajectory->parsed()) return strata::apps::runEvalTrajectory(eval_trajectory_options);
   if (map->parsed()) return strata::apps::runMap(map_options);
+  if (odometry->parsed()) return strata::apps::runOdometry(odometry_options);
   if (devices->parsed()) return listDevices();
   return runDefault();
 }

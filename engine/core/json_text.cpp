@@ -1,6 +1,8 @@
 #include "core/json_text.h"
 
+#include <cmath>
 #include <cstdio>
+#include <sstream>
 
 namespace strata {
 
@@ -19,6 +21,14 @@ std::string jsonQuoted(const std::string& text) {
     }
   }
   return out + "\"";
+}
+
+std::string jsonNumber(double v) {
+  if (!std::isfinite(v)) return "null";
+  std::ostringstream s;
+  s.precision(9);
+  s << v;
+  return s.str();
 }
 
 }  // namespace strata

@@ -124,6 +124,25 @@ bool isEurocFolder(const std::string& folder) {
          (path.filename() == "mav0" && fs::is_directory(path / "cam0"));
 }
 
+Calibration readCalibration(const std::string& folder, bool use_right_camera) {
+  const fs::path root(folder);
+  requireFolder(root, "EuRoC session");
+  const fs::path mav0 = fs::is_directory(root / "mav0") ? root / "mav0" : root;
+  Calibration calibration;
+  const auto camera = [&](const char* name) {
+    const fs::path yaml = mav0 / name / "sensor.yaml";
+    return parseCameraYaml(readText(yaml, kMaxEurocYamlBytes, "camera sensor.yaml"), yaml.string());
+  };
+  calibration.cameras.push_back(camera("cam0"));
+  if (use_right_camera && fs::exists(mav0 / "cam1" / "sensor.yaml")) {
+    calibration.cameras.push_back(camera("cam1"));
+  }
+  const fs::path imu_yaml = mav0 / "imu0" / "sensor.yaml";
+  calibration.imu =
+      parseImuYaml(readText(imu_yaml, kMaxEurocYamlBytes, "IMU sensor.yaml"), imu_yaml.string());
+  return calibration;
+}
+
 EurocDataset EurocDataset::open(const std::string& folder, const ReaderOptions& options) {
   if (options.stereo_tolerance_ns < 0) {
     throw InputError("EuRoC reader: stereo_tolerance_ns must be >= 0");

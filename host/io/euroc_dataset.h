@@ -101,6 +101,11 @@ class EurocDataset {
   ReaderStats stats_;
 };
 
+/// The calibration alone (cam0, cam1 when present and `use_right_camera`, imu0 sensor.yaml files)
+/// of a session folder or its mav0/, for live consumers that get the images and IMU elsewhere
+/// (over LCM). Same checks and InputError messages as open() for those files.
+Calibration readCalibration(const std::string& folder, bool use_right_camera = true);
+
 /// Whether `folder` looks like an EuRoC session (has mav0/cam0 or is mav0 with cam0/); no checks.
 bool isEurocFolder(const std::string& folder);
 

@@ -69,13 +69,7 @@ void fillAte(const Matches& m, TrajectoryError* e) {
   e->rotation_rmse_deg = std::sqrt(rot_sq / n) * 180.0 / M_PI;
 }
 
-std::string number(double v) {
-  if (!std::isfinite(v)) return "null";
-  std::ostringstream s;
-  s.precision(9);
-  s << v;
-  return s.str();
-}
+std::string number(double v) { return jsonNumber(v); }
 
 }  // namespace
 

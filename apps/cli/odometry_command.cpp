@@ -1,0 +1,204 @@
+#include "cli/odometry_command.h"
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <opencv2/core.hpp>
+
+#include "cli/odometry_summary.h"
+#include "cli/progress.h"
+#include "cli/trajectory_plot.h"
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "io/tum_format.h"
+
+namespace strata::apps {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+cv::Mat wrap(const GreyImage& image) {
+  if (image.empty()) return {};
+  return cv::Mat(image.height_px, image.width_px, CV_8UC1,
+                 const_cast<std::uint8_t*>(image.pixels.data()));
+}
+
+odometry::VioPipelineConfig pipelineConfig(const OdometryOptions& o,
+                                           const euroc::EurocDataset& dataset) {
+  odometry::VioPipelineConfig config;
+  config.mono = o.mono;
+  config.backend.window_size = o.window;
+  if (o.max_features > 0) config.frontend.detector.target_features = o.max_features;
+  if (o.anchor_to_truth) {
+    if (dataset.groundTruth().empty()) {
+      throw InputError(o.session_dir +
+                       ": --anchor-to-truth needs ground truth, the session has none");
+    }
+    const auto* truth = &dataset.groundTruth();
+    config.anchor_W_B = [truth](std::int64_t t_ns) {
+      return euroc::interpolateGroundTruth(*truth, t_ns);
+    };
+  }
+  return config;
+}
+
+void writeTrajectory(const std::string& path, const std::vector<odometry::PipelineFrame>& tracked) {
+  std::string text = "# timestamp tx ty tz qx qy qz qw (left camera to world, strata odometry)\n";
+  char stamp[32];
+  for (const auto& f : tracked) {
+    std::snprintf(stamp, sizeof(stamp), "%.9f ", 1e-9 * static_cast<double>(f.timestamp_ns));
+    text += stamp + tum::poseToTum(f.T_W_C) + "\n";
+  }
+  writeFileAtomically(path, std::vector<std::uint8_t>(text.begin(), text.end()));
+}
+
+std::string defaultSummaryPath(const std::string& out_path) {
+  std::filesystem::path p(out_path);
+  p.replace_extension(".json");
+  return p.string();
+}
+
+// Replays the session through the pipeline, reporting failures as they happen.
+OdometryRun replay(const OdometryOptions& o, const euroc::EurocDataset& dataset) {
+  OdometryRun run;
+  run.session_dir = o.session_dir;
+  run.reader = dataset.stats();
+  const std::size_t frames = o.frames > 0 ? std::min<std::size_t>(o.frames, dataset.frames().size())
+                                          : dataset.frames().size();
+  run.frames_in_dataset = dataset.frames().size();
+  odometry::VioPipeline pipeline(dataset.calibration(), pipelineConfig(o, dataset));
+  run.stereo = pipeline.stereo();
+  ProgressBar progress("odometry", frames, !o.quiet);
+  const auto collect = [&](std::vector<odometry::PipelineFrame> done) {
+    for (auto& f : done) {
+      if (f.status == odometry::VioStatus::kTracking)
+        run.tracked.push_back(std::move(f));
+      else if (f.status == odometry::VioStatus::kFailed && !o.quiet) {
+        std::fprintf(stderr, "\nstrata odometry: tracking lost at %.3f s: %s (re-initialising)\n",
+                     1e-9 * static_cast<double>(f.timestamp_ns), f.reason.c_str());
+      }
+    }
+  };
+  const Clock::time_point start = Clock::now();
+  std::size_t frames_pushed = 0;
+  for (const euroc::Event& e : dataset.events()) {
+    if (e.kind == euroc::Event::Kind::kImu) {
+      collect(pipeline.pushImu(dataset.imu()[e.index]));
+      continue;
+    }
+    if (frames_pushed == frames) break;
+    const Clock::time_point load = Clock::now();
+    const euroc::StereoImages images = dataset.loadImages(e.index);
+    run.image_load_s += secondsSince(load);
+    collect(pipeline.pushFrame(dataset.frames()[e.index].timestamp_ns, wrap(images.left),
+                               wrap(images.right)));
+    ++frames_pushed;
+    const auto& s = pipeline.stats();
+    char detail[96];
+    std::snprintf(
+        detail, sizeof(detail), "%zu tracked, %zu failures, %.1f ms/frame", s.frames_tracking,
+        s.failures,
+        (s.frontend_ms_total + s.backend_ms_total) / std::max<std::size_t>(1, s.frames_processed));
+    progress.update(frames_pushed, detail);
+  }
+  pipeline.flush();
+  progress.finish();
+  run.wall_s = secondsSince(start);
+  run.stats = pipeline.stats();
+  return run;
+}
+
+void printAccuracy(const OdometryAccuracy& a, bool stereo) {
+  const auto& headline = stereo ? a.se3 : a.sim3;
+  if (headline) {
+    const auto& e = *headline;
+    std::printf(
+        "ATE (%s): RMSE %.4f m = %.2f %% of %.2f m of path, max %.4f m; RPE %.2f %%, "
+        "%.3f deg/m\n",
+        traj::alignmentName(e.alignment), e.ate_rmse_m,
+        e.path_length_m > 0 ? 100.0 * e.ate_rmse_m / e.path_length_m : 0.0, e.path_length_m,
+        e.ate_max_m, e.rpe_trans_percent, e.rpe_rot_deg_per_m);
+    if (!stereo) std::printf("Sim(3) scale %.4f (1 = the IMU gave the true scale)\n", e.scale);
+  }
+  if (a.first) std::printf("Drift from the first pose: max %.4f m\n", a.first->ate_max_m);
+  std::printf("Gravity direction error: %.3f deg at initialisation, max %.3f deg\n",
+              a.gravity_error_first_deg, a.gravity_error_max_deg);
+}
+
+}  // namespace
+
+CLI::App* addOdometryCommand(CLI::App& app, OdometryOptions& o) {
+  CLI::App* cmd = app.add_subcommand(
+      "odometry", "Visual-inertial odometry over an EuRoC/ASL session (grey stereo or mono + IMU)");
+  cmd->add_option("session", o.session_dir, "Session folder holding mav0/ (or mav0/ itself)")
+      ->required();
+  cmd->add_option("--mode", o.mode, "Odometry mode: vio")->capture_default_str();
+  cmd->add_flag("--mono", o.mono, "Left camera only (scale from the IMU)");
+  cmd->add_option("--out", o.out_path, "Trajectory of the left camera (TUM format)")
+      ->capture_default_str();
+  cmd->add_option("--summary", o.summary_path, "JSON summary (default: --out with .json)");
+  cmd->add_option("--plot", o.plot_path, "Top-down PNG of the trajectory against the truth");
+  cmd->add_flag("--anchor-to-truth", o.anchor_to_truth,
+                "Start the world frame at the true pose (yaw, position) when tracking starts");
+  cmd->add_option("--window", o.window, "Keyframes in the sliding window")->capture_default_str();
+  cmd->add_option("--features", o.max_features, "Tracks the front end keeps (0: its default)");
+  cmd->add_option("--frames", o.frames, "Process only the first N frames (0: all)");
+  cmd->add_flag("--quiet", o.quiet, "No progress bar");
+  return cmd;
+}
+
+int runOdometry(const OdometryOptions& o) {
+  try {
+    if (o.mode != "vio") {
+      throw InputError("--mode " + o.mode +
+                       " is not known (vio; RGB-D tracking is `strata fuse --track`)");
+    }
+    if (o.window < 2) throw InputError("--window must be at least 2");
+    const euroc::EurocDataset dataset =
+        euroc::EurocDataset::open(o.session_dir, euroc::ReaderOptions{1'000'000, !o.mono});
+    OdometryRun run = replay(o, dataset);
+    run.accuracy = evaluateOdometry(dataset, run.tracked);
+    writeTrajectory(o.out_path, run.tracked);
+    const std::string summary_path =
+        o.summary_path.empty() ? defaultSummaryPath(o.out_path) : o.summary_path;
+    const std::string json = odometrySummaryJson(run);
+    writeFileAtomically(summary_path, std::vector<std::uint8_t>(json.begin(), json.end()));
+    const auto& s = run.stats;
+    std::printf(
+        "%s VIO: %zu of %zu frames tracked, %zu failures, %.1f frames/s (front end %.1f + "
+        "back end %.1f ms/frame)\n",
+        run.stereo ? "Stereo" : "Mono", s.frames_tracking, s.frames_processed, s.failures,
+        s.frames_processed / std::max(1e-9, 1e-3 * (s.frontend_ms_total + s.backend_ms_total)),
+        s.frontend_ms_total / std::max<std::size_t>(1, s.frames_processed),
+        s.backend_ms_total / std::max<std::size_t>(1, s.frames_processed));
+    if (run.accuracy) printAccuracy(*run.accuracy, run.stereo);
+    std::printf("Wrote %s and %s\n", o.out_path.c_str(), summary_path.c_str());
+    if (!o.plot_path.empty() && run.accuracy) {
+      const auto& e = run.stereo ? run.accuracy->se3 : run.accuracy->sim3;
+      if (e) {
+        writeTrajectoryPlot(o.plot_path, *e);
+        std::printf("Wrote %s\n", o.plot_path.c_str());
+      }
+    }
+    if (run.tracked.empty()) {
+      std::fprintf(stderr, "strata odometry: no frame was tracked (%s)\n",
+                   run.stats.failure_log.empty() ? "never initialised"
+                                                 : run.stats.failure_log.back().second.c_str());
+      return 3;
+    }
+    return 0;
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "strata odometry: input error: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "strata odometry: error: %s\n", e.what());
+    return 1;
+  }
+}
+
+}  // namespace strata::apps
