@@ -35,21 +35,22 @@ done
 python3 - "$OUT" <<'PY'
 import glob, json, os, sys
 out = sys.argv[1]
-print("| world | session | mode | tracked | failures | path m | ATE RMSE mm | ATE % of path | ATE max mm | RPE % | RPE deg/m | scale | frames/s |")
-print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+print("| world | session | mode | tracked | failures | path m | ATE RMSE mm | ATE % of path | ATE max mm | RPE % | RPE deg/m | scale | frames/s | frames per CPU s |")
+print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
 for path in sorted(glob.glob(os.path.join(out, "*", "session_*", "vio_*.json"))):
     d = json.load(open(path))
     parts = path.split(os.sep)
     world, session, mode = parts[-3], parts[-2], "stereo" if d["stereo"] else "mono"
     a = (d.get("accuracy") or {}).get("se3" if d["stereo"] else "sim3")
     fps = d["timing"]["frames_per_second"]
+    cpu_fps = d["timing"].get("frames_per_cpu_second") or float("nan")
     if not a:
-        print(f"| {world} | {session} | {mode} | {d['frames_tracked']}/{d['frames_processed']} | {d['failures']} | | | | | | | | {fps:.1f} |")
+        print(f"| {world} | {session} | {mode} | {d['frames_tracked']}/{d['frames_processed']} | {d['failures']} | | | | | | | | {fps:.1f} | {cpu_fps:.1f} |")
         continue
     pct = 100 * a["ate_rmse_m"] / a["path_length_m"] if a["path_length_m"] else float("nan")
     rpe = a["rpe_trans_percent"] if a["rpe_trans_percent"] is not None else float("nan")
     rot = a["rpe_rot_deg_per_m"] if a["rpe_rot_deg_per_m"] is not None else float("nan")
     print(f"| {world} | {session} | {mode} | {d['frames_tracked']}/{d['frames_processed']} | {d['failures']} | "
           f"{a['path_length_m']:.1f} | {1e3*a['ate_rmse_m']:.1f} | {pct:.2f} | {1e3*a['ate_max_m']:.1f} | "
-          f"{rpe:.2f} | {rot:.3f} | {a['scale']:.4f} | {fps:.1f} |")
+          f"{rpe:.2f} | {rot:.3f} | {a['scale']:.4f} | {fps:.1f} | {cpu_fps:.1f} |")
 PY
