@@ -166,8 +166,7 @@ TEST(TrackRgbd, ShortRoomSequenceWithinACentimetre) {
 TEST(TrackRgbd, BadFramesAreLostAndNotFused) {
   const std::vector<Eigen::Isometry3d> arc = sim::makeDefaultTrajectory(10);
   // A frame from elsewhere: the camera moved 1.5 m and turned away, the guess still at the map.
-  const Eigen::Isometry3d elsewhere =
-      perturbed(arc[0], {1.5, 0.0, 0.8}, {0, 1, 0}, 70.0);
+  const Eigen::Isometry3d elsewhere = perturbed(arc[0], {1.5, 0.0, 0.8}, {0, 1, 0}, 70.0);
   const sim::AnalyticDataset dataset = roomDataset({arc[0], elsewhere});
   Mapper mapper(MapperConfig{}, test::sharedContext());
   ASSERT_TRUE(mapper.trackAndIntegrate(dataset.load(0), dataset.intrinsics()).fused);
@@ -205,6 +204,42 @@ TEST(TrackRgbd, BadFramesAreLostAndNotFused) {
   const TrackedFrame again = mapper.trackAndIntegrate(dataset.load(0), dataset.intrinsics());
   EXPECT_TRUE(again.fused) << again.track.reason;
   EXPECT_LT(translationError(again.track.T_W_C, arc[0]), 0.003);
+}
+
+// Point-to-plane rows [n, p x n] of points on the plane z = 1 (normal +z): tz, rx and ry are
+// constrained, tx, ty and rz are not. A residual that rounding leaves in those directions must
+// not move the pose when the solve is told the conditioning floor.
+TEST(TrackGaussNewton, IllConditionedDirectionsGetNoStep) {
+  NormalEquations sums;
+  const Eigen::Vector3d n(0, 0, 1);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Vector6d Jtr = Vector6d::Zero();
+  Matrix6d H = Matrix6d::Zero();
+  for (int k = 0; k < 500; ++k) {
+    const Eigen::Vector3d p(u(rng), u(rng), 1.0);
+    Vector6d J;
+    J << n, p.cross(n);
+    const double r = 0.002 + 1e-9 * u(rng);  // a 2 mm offset along the normal, plus noise
+    H += J * J.transpose();
+    Jtr += J * r;
+  }
+  Jtr[0] += 1e-7;  // rounding in an unconstrained direction (in-plane x)
+  int k = 0;
+  for (int i = 0; i < 6; ++i) {
+    for (int j = i; j < 6; ++j) sums.JtJ[static_cast<std::size_t>(k++)] = H(i, j);
+    sums.Jtr[static_cast<std::size_t>(i)] = Jtr[i];
+  }
+  sums.inliers = 500;
+  const GaussNewtonStep truncated = solveGaussNewton(sums, 1e-4);
+  ASSERT_TRUE(truncated.solved);
+  EXPECT_EQ(truncated.unconstrained_directions, 3);
+  EXPECT_NEAR(truncated.xi[2], -0.002, 1e-6);  // the constrained offset is removed
+  EXPECT_LT(std::abs(truncated.xi[0]) + std::abs(truncated.xi[1]) + std::abs(truncated.xi[5]),
+            1e-9);
+  EXPECT_LT(truncated.min_eigenvalue, 1e-12);
+  const GaussNewtonStep full = solveGaussNewton(sums);  // without the floor: no solution
+  EXPECT_FALSE(full.solved && full.xi.head<2>().norm() < 1e-3);
 }
 
 TEST(TrackRgbd, AFloorAloneIsIllConditioned) {

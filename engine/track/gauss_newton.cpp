@@ -18,15 +18,31 @@ Matrix6d fullJtJ(const NormalEquations& sums) {
   return H;
 }
 
-GaussNewtonStep solveGaussNewton(const NormalEquations& sums) {
+GaussNewtonStep solveGaussNewton(const NormalEquations& sums, double min_eigenvalue) {
   GaussNewtonStep step;
   if (sums.inliers < 6) return step;
+  const double n = static_cast<double>(sums.inliers);
   const Matrix6d H = fullJtJ(sums);
   Vector6d g;
   for (int i = 0; i < 6; ++i) g[i] = sums.Jtr[static_cast<std::size_t>(i)];
-  const Eigen::SelfAdjointEigenSolver<Matrix6d> eigen(H / static_cast<double>(sums.inliers),
-                                                      Eigen::EigenvaluesOnly);
+  const Eigen::SelfAdjointEigenSolver<Matrix6d> eigen(H / n);
+  if (eigen.info() != Eigen::Success) return step;
   step.min_eigenvalue = eigen.eigenvalues()[0];
+  if (min_eigenvalue > 0.0 && step.min_eigenvalue < min_eigenvalue) {
+    // Weakly constrained directions (a plane's in-plane translation, say) would take a step
+    // made of rounding noise: solve only in the eigenvectors the data constrains.
+    for (int i = 0; i < 6; ++i) {
+      const double lambda = eigen.eigenvalues()[i];
+      if (lambda < min_eigenvalue) {
+        ++step.unconstrained_directions;
+        continue;
+      }
+      const Vector6d v = eigen.eigenvectors().col(i);
+      step.xi -= v * (v.dot(g) / (n * lambda));
+    }
+    step.solved = step.unconstrained_directions < 6 && step.xi.allFinite();
+    return step;
+  }
   const Eigen::LDLT<Matrix6d> ldlt(H);
   if (ldlt.info() != Eigen::Success || !ldlt.isPositive() || !(step.min_eigenvalue > 0.0)) {
     return step;

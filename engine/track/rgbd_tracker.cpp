@@ -13,8 +13,8 @@ namespace {
 std::vector<LiveView> liveViews(const std::vector<LiveLevel>& pyramid) {
   std::vector<LiveView> views;
   for (const LiveLevel& level : pyramid) {
-    views.push_back(LiveView{level.intrinsics.width_px, level.intrinsics.height_px,
-                             &level.vertex_C, &level.normal_C});
+    views.push_back(LiveView{level.intrinsics.width_px, level.intrinsics.height_px, &level.vertex_C,
+                             &level.normal_C});
   }
   return views;
 }
@@ -43,8 +43,7 @@ RgbdTracker::RgbdTracker(vk::Context& context, const TrackConfig& config)
 AssociationGates RgbdTracker::gatesFor() const {
   AssociationGates gates;
   gates.max_distance_m = config_.max_distance_m;
-  gates.min_normal_cos =
-      static_cast<float>(std::cos(config_.max_normal_angle_deg * M_PI / 180.0));
+  gates.min_normal_cos = static_cast<float>(std::cos(config_.max_normal_angle_deg * M_PI / 180.0));
   gates.huber_m = config_.huber_m;
   return gates;
 }
@@ -56,14 +55,13 @@ TrackResult RgbdTracker::track(DeviceTsdfMap& map, int tsdf_layer, const RgbdFra
   validateFrame(frame, intrinsics);
   validatePose(T_W_C_guess, "tracking guess");
   const auto finish = [&](TrackResult result) {
-    result.wall_ms = std::chrono::duration<double, std::milli>(
-                         std::chrono::steady_clock::now() - start).count();
+    result.wall_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return result;
   };
 
-  const std::vector<LiveLevel> pyramid =
-      buildLivePyramid(frame.depth, intrinsics, map.config(), config_.levels,
-                       config_.pyramid_depth_threshold_m);
+  const std::vector<LiveLevel> pyramid = buildLivePyramid(
+      frame.depth, intrinsics, map.config(), config_.levels, config_.pyramid_depth_threshold_m);
   if (pyramid[0].valid < config_.min_inliers) {
     return finish(lostEarly(T_W_C_guess, "too little valid depth"));
   }
@@ -71,8 +69,7 @@ TrackResult RgbdTracker::track(DeviceTsdfMap& map, int tsdf_layer, const RgbdFra
   raycast_options.tsdf_layer = tsdf_layer;
   const CameraIntrinsics& model_intrinsics =
       pyramid[static_cast<std::size_t>(config_.model_level)].intrinsics;
-  const double raycast_ms =
-      raycast_.render(map, model_intrinsics, T_W_C_guess, raycast_options);
+  const double raycast_ms = raycast_.render(map, model_intrinsics, T_W_C_guess, raycast_options);
   const std::size_t pixels =
       static_cast<std::size_t>(model_intrinsics.width_px) * model_intrinsics.height_px;
   if (countHits(raycast_.normalBuffer(), pixels) < config_.min_inliers) {
@@ -94,7 +91,7 @@ TrackResult RgbdTracker::track(DeviceTsdfMap& map, int tsdf_layer, const RgbdFra
       const NormalEquations sums = equations_.run(level, T_W_C, gates, &ms);
       result.equations_ms += ms;
       ++result.iterations;
-      const GaussNewtonStep step = solveGaussNewton(sums);
+      const GaussNewtonStep step = solveGaussNewton(sums, config_.min_eigenvalue);
       if (!step.solved) break;  // this level cannot constrain the pose; try the finer one
       T_W_C = applyIncrement(T_W_C, step.xi);
       if (step.xi.norm() < config_.convergence_update) break;
@@ -107,9 +104,8 @@ TrackResult RgbdTracker::track(DeviceTsdfMap& map, int tsdf_layer, const RgbdFra
   result.inliers = final_sums.inliers;
   result.valid_pixels = pyramid[0].valid;
   result.inlier_fraction = static_cast<double>(final_sums.inliers) / pyramid[0].valid;
-  result.rms_m = final_sums.inliers > 0
-                     ? std::sqrt(final_sums.residual_sq / final_sums.inliers)
-                     : 0.0;
+  result.rms_m =
+      final_sums.inliers > 0 ? std::sqrt(final_sums.residual_sq / final_sums.inliers) : 0.0;
   result.min_eigenvalue = solveGaussNewton(final_sums).min_eigenvalue;
   judge(T_W_C_guess, &result);
   return finish(result);
