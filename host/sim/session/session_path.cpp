@@ -1,8 +1,9 @@
 #include "sim/session/session_path.h"
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <functional>
+#include <optional>
 
 #include "core/error.h"
 #include "sim/rng.h"
@@ -82,10 +83,36 @@ Eigen::Vector3d lookAtFrom(const WorldSpec& spec, const Eigen::Vector2d& p,
     const Eigen::Vector2d c = centre(room);
     if ((c - p).norm() > 0.8) return Eigen::Vector3d(c.x(), c.y(), kLookAtHeight_m);
   }
-  const Eigen::Vector2d direction = (ahead - p).norm() > 1e-6 ? (ahead - p).normalized()
-                                                                : Eigen::Vector2d::UnitX();
+  const Eigen::Vector2d direction =
+      (ahead - p).norm() > 1e-6 ? (ahead - p).normalized() : Eigen::Vector2d::UnitX();
   const Eigen::Vector2d target = p + 2.0 * direction;
   return Eigen::Vector3d(target.x(), target.y(), kLookAtHeight_m + 0.4);
+}
+
+/// Consecutive waypoints' views turn by at most kMaxViewTurn_rad. Where the chosen target
+/// jumps (the room centre comes too close and the view switches to ahead, or a door leads into
+/// a room whose centre lies behind), the two targets sat on opposite sides of the path, and the
+/// look-at spline between them passed through the camera: the view flipped by up to 180 degrees
+/// in a few milliseconds (tens of thousands of degrees per second in the office's sessions),
+/// which no camera does. The target keeps its distance and height; its bearing is clamped.
+void limitViewTurn(const Eigen::Vector2d& p, Eigen::Vector3d* target,
+                   std::optional<Eigen::Vector2d>* previous_view) {
+  constexpr double kMaxViewTurn_rad = 45.0 * M_PI / 180.0;  // per 0.5 m of path
+  const Eigen::Vector2d offset = target->head<2>() - p;
+  const double distance = offset.norm();
+  if (distance < 1e-6) return;
+  Eigen::Vector2d view = offset / distance;
+  if (*previous_view) {
+    const Eigen::Vector2d& v0 = **previous_view;
+    const double turn = std::atan2(v0.x() * view.y() - v0.y() * view.x(), v0.dot(view));
+    if (std::abs(turn) > kMaxViewTurn_rad) {
+      const double a = std::copysign(kMaxViewTurn_rad, turn);
+      view = Eigen::Vector2d(std::cos(a) * v0.x() - std::sin(a) * v0.y(),
+                             std::sin(a) * v0.x() + std::cos(a) * v0.y());
+      target->head<2>() = p + distance * view;
+    }
+  }
+  *previous_view = view;
 }
 
 }  // namespace
@@ -125,10 +152,13 @@ std::vector<Waypoint> sessionWaypoints(const World& world, int session,
                      std::to_string(config.height_m) + " m height");
   }
   std::vector<Waypoint> waypoints;
+  std::optional<Eigen::Vector2d> previous_view;
   for (std::size_t i = 0; i < points.size(); ++i) {
     const Eigen::Vector2d& p = points[i];
     const Eigen::Vector2d& ahead = points[std::min(i + 1, points.size() - 1)];
-    waypoints.push_back({Eigen::Vector3d(p.x(), p.y(), config.height_m), lookAtFrom(spec, p, ahead)});
+    Eigen::Vector3d target = lookAtFrom(spec, p, ahead);
+    limitViewTurn(p, &target, &previous_view);
+    waypoints.push_back({Eigen::Vector3d(p.x(), p.y(), config.height_m), target});
   }
   return waypoints;
 }
