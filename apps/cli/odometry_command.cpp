@@ -66,6 +66,19 @@ void writeTrajectory(const std::string& path, const std::vector<odometry::Pipeli
   writeFileAtomically(path, std::vector<std::uint8_t>(text.begin(), text.end()));
 }
 
+std::string frameCsvRow(const odometry::PipelineFrame& f) {
+  std::string reason = f.reason;
+  for (char& c : reason) {
+    if (c == ',' || c == '\n') c = ';';
+  }
+  char row[256];
+  std::snprintf(row, sizeof(row), "%.9f,%s,%d,%d,%d,%d,%d,%.4f,%.2f,%.2f,",
+                1e-9 * static_cast<double>(f.timestamp_ns), odometry::toString(f.status), f.segment,
+                f.features, f.stereo_matched, f.frontend_lost ? 1 : 0, f.landmarks, f.v_W_B.norm(),
+                f.frontend_ms, f.backend_ms);
+  return row + reason + "\n";
+}
+
 std::string defaultSummaryPath(const std::string& out_path) {
   std::filesystem::path p(out_path);
   p.replace_extension(".json");
@@ -83,8 +96,12 @@ OdometryRun replay(const OdometryOptions& o, const euroc::EurocDataset& dataset)
   odometry::VioPipeline pipeline(dataset.calibration(), pipelineConfig(o, dataset));
   run.stereo = pipeline.stereo();
   ProgressBar progress("odometry", frames, !o.quiet);
+  std::string frames_csv =
+      "timestamp_s,status,segment,features,stereo_matched,frontend_lost,landmarks,speed_mps,"
+      "frontend_ms,backend_ms,reason\n";
   const auto collect = [&](std::vector<odometry::PipelineFrame> done) {
     for (auto& f : done) {
+      if (!o.frames_csv_path.empty()) frames_csv += frameCsvRow(f);
       if (f.status == odometry::VioStatus::kTracking)
         run.tracked.push_back(std::move(f));
       else if (f.status == odometry::VioStatus::kFailed && !o.quiet) {
@@ -118,6 +135,10 @@ OdometryRun replay(const OdometryOptions& o, const euroc::EurocDataset& dataset)
   }
   pipeline.flush();
   progress.finish();
+  if (!o.frames_csv_path.empty()) {
+    writeFileAtomically(o.frames_csv_path,
+                        std::vector<std::uint8_t>(frames_csv.begin(), frames_csv.end()));
+  }
   run.wall_s = secondsSince(start);
   run.cpu_s = processCpuSeconds() - cpu_start;
   run.stats = pipeline.stats();
@@ -159,6 +180,8 @@ CLI::App* addOdometryCommand(CLI::App& app, OdometryOptions& o) {
   cmd->add_option("--window", o.window, "Keyframes in the sliding window")->capture_default_str();
   cmd->add_option("--features", o.max_features, "Tracks the front end keeps (0: its default)");
   cmd->add_option("--frames", o.frames, "Process only the first N frames (0: all)");
+  cmd->add_option("--frames-csv", o.frames_csv_path,
+                  "Per-frame CSV: status, features, stereo matches, landmarks, speed, ms, reason");
   cmd->add_flag("--quiet", o.quiet, "No progress bar");
   return cmd;
 }

@@ -19,8 +19,9 @@ struct OdometryOptions {
   std::string mode = "vio";
   bool mono = false;
   std::string out_path = "trajectory.txt";
-  std::string summary_path;  // empty: <out without extension>.json
-  std::string plot_path;     // empty: none; top-down PNG against the truth
+  std::string summary_path;     // empty: <out without extension>.json
+  std::string plot_path;        // empty: none; top-down PNG against the truth
+  std::string frames_csv_path;  // empty: none; one row per processed frame
   /// Anchor the world frame at the true body pose when tracking starts (yaw and position from
   /// the truth; the sessions of a multi-session map then share the truth's frame).
   bool anchor_to_truth = false;

@@ -84,6 +84,8 @@ std::string odometrySummaryJson(const OdometryRun& run) {
     << ", \"frames_processed\": " << st.frames_processed
     << ", \"frames_tracked\": " << st.frames_tracking
     << ", \"frames_initializing\": " << st.frames_initializing << ", \"failures\": " << st.failures
+    << ", \"reanchored_dead_reckoned\": " << st.reanchored_dead_reckoned
+    << ", \"reanchored_position_held\": " << st.reanchored_position_held
     << ", \"first_tracked_s\": "
     << (st.first_tracking_ns >= 0 ? number(1e-9 * static_cast<double>(st.first_tracking_ns))
                                   : std::string("null"))

@@ -11,6 +11,8 @@ namespace {
 
 // IMU kept for the gyro prediction and for dead reckoning over a re-initialisation.
 constexpr std::int64_t kImuHistoryNs = 10'000'000'000;
+// Longest gap between tracking segments bridged by dead reckoning (see bridgeGap).
+constexpr double kMaxDeadReckoning_s = 3.0;
 
 double msSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
@@ -248,6 +250,23 @@ Eigen::Isometry3d VioPipeline::deadReckon(std::int64_t to_ns) const {
   return T;
 }
 
+Eigen::Isometry3d VioPipeline::bridgeGap(std::int64_t to_ns) {
+  Eigen::Isometry3d T_W_B = deadReckon(to_ns);
+  const double gap_s = 1e-9 * static_cast<double>(to_ns - last_tracked_->timestamp_ns);
+  const double speed_mps =
+      (T_W_B.translation() - last_tracked_->T_W_B.translation()).norm() / std::max(gap_s, 1e-3);
+  // Double integration of the accelerometer is only good for short gaps; one that implies an
+  // impossible speed (the failure that ended tracking may have been the IMU's) is not trusted:
+  // the position is held where tracking ended, the gyro's rotation stands.
+  if (gap_s > kMaxDeadReckoning_s || speed_mps > config_.backend.max_speed_mps) {
+    T_W_B.translation() = last_tracked_->T_W_B.translation();
+    ++stats_.reanchored_position_held;
+  } else {
+    ++stats_.reanchored_dead_reckoned;
+  }
+  return T_W_B;
+}
+
 PipelineFrame VioPipeline::process(const Pending& frame) {
   PipelineFrame out;
   out.timestamp_ns = frame.timestamp_ns;
@@ -280,7 +299,7 @@ PipelineFrame VioPipeline::process(const Pending& frame) {
       bias_ = e.bias;
       if (!anchored_) {
         if (last_tracked_) {
-          T_W_E_ = yawAndPosition(deadReckon(frame.timestamp_ns), e.T_W_B);
+          T_W_E_ = yawAndPosition(bridgeGap(frame.timestamp_ns), e.T_W_B);
         } else if (config_.anchor_W_B) {
           const auto truth = config_.anchor_W_B(frame.timestamp_ns);
           if (truth) T_W_E_ = yawAndPosition(*truth, e.T_W_B);

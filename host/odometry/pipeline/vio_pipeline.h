@@ -20,7 +20,8 @@
 // After a failure the estimator re-initialises in a new frame of its own; the pipeline keeps W
 // continuous by dead-reckoning the body on the IMU from the last tracked state to the first
 // re-initialised frame and mapping the new frame onto W (yaw and position; a stated
-// approximation: the dead-reckoned gap adds its drift, a few cm per second without vision).
+// approximation: the dead-reckoned gap adds its drift, a few cm per second without vision). A gap
+// over 3 s, or one whose dead reckoning implies an impossible speed, holds the last position.
 //
 // Timestamps are nanoseconds on one clock for images and IMU (EuRoC's). Internally times are
 // seconds from the first timestamp seen.
@@ -93,6 +94,10 @@ struct PipelineStats {
   std::size_t frames_tracking = 0;
   std::size_t frames_initializing = 0;
   std::size_t failures = 0;
+  /// How each re-initialisation was joined to W: by dead reckoning over the gap, or (a gap over
+  /// 3 s, or one implying a speed over the back end's max_speed_mps) holding the last position.
+  std::size_t reanchored_dead_reckoned = 0;
+  std::size_t reanchored_position_held = 0;
   /// Time of the first tracked frame (ns; -1 before it) and of each failure with its reason.
   std::int64_t first_tracking_ns = -1;
   std::vector<std::pair<std::int64_t, std::string>> failure_log;
@@ -140,6 +145,7 @@ class VioPipeline {
   PipelineFrame process(const Pending& frame);
   std::optional<Eigen::Matrix3d> predictCameraRotation(std::int64_t from_ns, std::int64_t to_ns);
   Eigen::Isometry3d deadReckon(std::int64_t to_ns) const;
+  Eigen::Isometry3d bridgeGap(std::int64_t to_ns);
   void checkImage(const cv::Mat& image, const Camera& camera, const char* eye) const;
   double seconds(std::int64_t timestamp_ns) const;
 
