@@ -67,6 +67,41 @@ TEST(SensorTrajectory, DerivativesMatchFiniteDifferences) {
                InputError);  // looks straight up
 }
 
+TEST(SensorTrajectory, RestAtStartHoldsThePoseThenFadesTheSwayInSmoothly) {
+  TrajectoryConfig moving;
+  TrajectoryConfig resting;
+  resting.rest_at_start_s = 2.0;
+  const Trajectory path(roomLoop(), moving, 3);
+  const Trajectory rest(roomLoop(), resting, 3);
+  EXPECT_NEAR(rest.duration_s(), path.duration_s() + 2.0, 1e-12);
+  const Eigen::Isometry3d T0 = rest.pose(0.0);
+  for (double t = 0.0; t <= 2.0; t += 0.1) {
+    const TrajectoryState s = rest.state(t);
+    EXPECT_TRUE(s.T_W_C.isApprox(T0, 1e-12)) << t;
+    EXPECT_LT(s.velocity_W.norm(), 1e-12) << t;
+    EXPECT_LT(s.acceleration_W.norm(), 1e-12) << t;
+    if (t < 1.99) {
+      EXPECT_LT(s.angular_velocity_C.norm(), 1e-9) << t;
+    }
+  }
+  // After the fade-in the pose is the moving path's, shifted by the rest, minus nothing.
+  for (double t = 1.5; t < path.duration_s() - 0.5; t += 0.9) {
+    EXPECT_TRUE(rest.pose(t + 2.0).isApprox(path.pose(t), 1e-9)) << t;
+  }
+  // Through the fade-in the derivatives stay consistent (what the IMU integrates).
+  const double h = 1e-4;
+  for (double t = 2.05; t < 3.0; t += 0.1) {
+    const TrajectoryState s = rest.state(t);
+    const TrajectoryState a = rest.state(t - h), b = rest.state(t + h);
+    const Eigen::Vector3d v_fd = (b.T_W_C.translation() - a.T_W_C.translation()) / (2 * h);
+    EXPECT_NEAR((v_fd - s.velocity_W).norm(), 0.0, 1e-6) << t;
+    EXPECT_NEAR(((b.velocity_W - a.velocity_W) / (2 * h) - s.acceleration_W).norm(), 0.0, 1e-6)
+        << t;
+  }
+  resting.rest_at_start_s = -1.0;
+  EXPECT_THROW(resting.validate(), InputError);
+}
+
 // ---------------------------------------------------------------------------------------------
 // IMU
 

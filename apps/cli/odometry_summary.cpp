@@ -104,7 +104,9 @@ std::string odometrySummaryJson(const OdometryRun& run) {
     << ", \"frames_without_imu\": " << st.frames_without_imu_skipped << "}";
   const double n = static_cast<double>(std::max<std::size_t>(1, st.frames_processed));
   s << ", \"timing\": {\"wall_s\": " << number(run.wall_s)
-    << ", \"image_load_s\": " << number(run.image_load_s)
+    << ", \"image_load_s\": " << number(run.image_load_s) << ", \"cpu_s\": " << number(run.cpu_s)
+    << ", \"frames_per_cpu_second\": "
+    << number(run.cpu_s > 0 ? static_cast<double>(st.frames_processed) / run.cpu_s : NAN)
     << ", \"frontend_ms_per_frame\": " << number(st.frontend_ms_total / n)
     << ", \"backend_ms_per_frame\": " << number(st.backend_ms_total / n)
     << ", \"frames_per_second\": "

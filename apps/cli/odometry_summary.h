@@ -30,8 +30,9 @@ struct OdometryRun {
   std::size_t frames_in_dataset = 0;
   odometry::PipelineStats stats;
   euroc::ReaderStats reader;
-  double wall_s = 0.0;                           // the whole replay, image decoding included
-  double image_load_s = 0.0;                     // of which decoding PNGs
+  double wall_s = 0.0;        // the whole replay, image decoding included
+  double image_load_s = 0.0;  // of which decoding PNGs
+  double cpu_s = 0.0;         // CPU time of the process over the replay (all threads)
   std::vector<odometry::PipelineFrame> tracked;  // tracking frames, in time order
   std::optional<OdometryAccuracy> accuracy;      // with ground truth only
 };

@@ -1,7 +1,6 @@
 #include "cli/sim_command.h"
 
 #include <CLI/CLI.hpp>
-
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
@@ -37,8 +36,8 @@ void writeOdometry(const fs::path& path, const sim::SimSessionDataset& session) 
   writeText(path, out.str());
 }
 
-std::size_t writeSession(const sim::SimSessionDataset& session, const fs::path& dir,
-                         bool drift, ProgressBar& progress, std::size_t& done) {
+std::size_t writeSession(const sim::SimSessionDataset& session, const fs::path& dir, bool drift,
+                         ProgressBar& progress, std::size_t& done) {
   TumWriter writer(dir.string(), session.intrinsics());
   for (std::size_t i = 0; i < session.size(); ++i) {
     RgbdFrame frame = session.load(i);
@@ -81,6 +80,9 @@ CLI::App* addSimCommand(CLI::App& app, SimOptions& o) {
   sim->add_flag("--no-noise", o.no_noise, "Exact depth (16-bit quantisation only)");
   sim->add_flag("--drift", o.drift, "Also write drifted odometry (odometry.txt)");
   sim->add_flag("--quiet", o.quiet, "No progress bar");
+  sim->add_option("--rest", o.rest_s,
+                  "Seconds the camera rests before each path starts (no sway; VIO standstill)")
+      ->capture_default_str();
   sim->add_flag("--stereo", o.stereo,
                 "Also write each session as grey stereo + IMU in the EuRoC layout (mav0/)");
   sim->add_flag("--mono", o.mono, "With --stereo: the left camera only");
@@ -102,8 +104,8 @@ CLI::App* addSimCommand(CLI::App& app, SimOptions& o) {
 int runSim(const SimOptions& o) {
   try {
     const auto world = loadWorld(o.world, o.seed, o.sessions);
-    const sim::SimSessionConfig config =
-        sessionConfig(o.rate_hz, o.max_frames, !o.no_noise, o.drift);
+    sim::SimSessionConfig config = sessionConfig(o.rate_hz, o.max_frames, !o.no_noise, o.drift);
+    config.trajectory.rest_at_start_s = o.rest_s;
     std::vector<std::unique_ptr<sim::SimSessionDataset>> sessions;
     std::size_t total = 0;
     for (int s = 0; s < world->sessionCount(); ++s) {
@@ -131,14 +133,13 @@ int runSim(const SimOptions& o) {
       }
     }
     progress.finish();
-    std::printf("Rendered %d sessions of world '%s' (seed %llu), %zu frames at %dx%d, into %s "
-                "(TUM RGB-D per session, IMU in EuRoC layout, ground truth in ground_truth/%s).\n",
-                world->sessionCount(), world->name().c_str(),
-                static_cast<unsigned long long>(world->seed()), rgbd_frames,
-                config.camera.intrinsics.width_px, config.camera.intrinsics.height_px,
-                o.out_dir.c_str(),
-                o.stereo ? (o.mono ? "; grey mono + IMU in mav0/" : "; grey stereo + IMU in mav0/")
-                         : "");
+    std::printf(
+        "Rendered %d sessions of world '%s' (seed %llu), %zu frames at %dx%d, into %s "
+        "(TUM RGB-D per session, IMU in EuRoC layout, ground truth in ground_truth/%s).\n",
+        world->sessionCount(), world->name().c_str(),
+        static_cast<unsigned long long>(world->seed()), rgbd_frames,
+        config.camera.intrinsics.width_px, config.camera.intrinsics.height_px, o.out_dir.c_str(),
+        o.stereo ? (o.mono ? "; grey mono + IMU in mav0/" : "; grey stereo + IMU in mav0/") : "");
     return 0;
   } catch (const InputError& e) {
     std::fprintf(stderr, "strata sim: input error: %s\n", e.what());

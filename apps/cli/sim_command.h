@@ -22,9 +22,12 @@ struct SimOptions {
   bool no_noise = false;
   bool drift = false;
   bool quiet = false;
+  /// > 0: each session's camera rests this long before the path starts (a VIO standstill start;
+  /// every stream, RGB-D included, covers the rest).
+  double rest_s = 0.0;
   /// EuRoC layout per session (mav0/): grey stereo at 20 Hz, IMU at 200 Hz, body ground truth.
   bool stereo = false;
-  bool mono = false;              // with stereo: cam0 only
+  bool mono = false;               // with stereo: cam0 only
   double stereo_duration_s = 0.0;  // > 0: only the first seconds of each path
   int stereo_width_px = 752;
   int stereo_height_px = 480;

@@ -120,6 +120,7 @@ struct VioEstimator::Impl {
 
   FrameEstimate initialise(const FrameObservations& frame);
   bool featuresStill(const FrameObservations& frame) const;
+  static int stereoMatched(const FrameObservations& frame);
   bool initialiseInMotion();
   FrameEstimate track(const FrameObservations& frame);
   std::string healthProblem(const ceres::Solver::Summary& summary,
@@ -176,6 +177,15 @@ FrameEstimate VioEstimator::Impl::initialise(const FrameObservations& frame) {
   if (window.keyframes.empty() && imu.front().t_s > frame.t_s - 1e-9) {
     FrameEstimate e = output(frame.t_s);
     e.reason = "waiting for IMU samples before the first frame";
+    return e;
+  }
+  // Visual-only poses need vision: a frame with too few stereo-matched features (a blind or
+  // textureless stretch) restarts the set of initialisation keyframes instead of joining it
+  // with a pose that is the gyro's guess and a position that never moved.
+  if (stereoMatched(frame) < config.min_observations) {
+    window.clear();
+    FrameEstimate e = output(frame.t_s);
+    e.reason = "waiting for stereo features to start in motion";
     return e;
   }
   const bool first = window.keyframes.empty();
@@ -341,6 +351,12 @@ std::string VioEstimator::Impl::healthProblem(const ceres::Solver::Summary& summ
   return "";
 }
 
+int VioEstimator::Impl::stereoMatched(const FrameObservations& frame) {
+  int matched = 0;
+  for (const FeatureObservation& o : frame.features) matched += o.xy_right_norm.has_value() ? 1 : 0;
+  return matched;
+}
+
 bool VioEstimator::Impl::featuresStill(const FrameObservations& frame) const {
   // The oldest kept frame, about window_s ago, against this one.
   if (recent_frames.empty() ||
@@ -358,8 +374,10 @@ bool VioEstimator::Impl::featuresStill(const FrameObservations& frame) const {
       motion_px.push_back((rig.left.toPixel(o.xy_left_norm) - it->second).norm());
     }
   }
-  // Too few common tracks to tell: the IMU's verdict stands.
-  if (static_cast<int>(motion_px.size()) < config.min_observations) return true;
+  // Too few common tracks to tell: no standstill. The IMU alone cannot tell rest from smooth
+  // motion at constant velocity (a blind stretch in motion passed its test and started the
+  // window at zero velocity), and without tracks there is nothing to start from anyway.
+  if (static_cast<int>(motion_px.size()) < config.min_observations) return false;
   std::nth_element(motion_px.begin(), motion_px.begin() + motion_px.size() / 2, motion_px.end());
   return motion_px[motion_px.size() / 2] < config.standstill.max_feature_motion_px;
 }

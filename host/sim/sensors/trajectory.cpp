@@ -54,23 +54,50 @@ void TrajectoryConfig::validate() const {
   if (!(min_segment_duration_s > 0.0) || !std::isfinite(min_segment_duration_s)) {
     throw InputError("TrajectoryConfig: min_segment_duration_s must be positive and finite");
   }
+  if (!(rest_at_start_s >= 0.0) || !std::isfinite(rest_at_start_s)) {
+    throw InputError("TrajectoryConfig: rest_at_start_s must be >= 0 and finite");
+  }
   jitter.validate();
 }
 
 Trajectory::Trajectory(const std::vector<Waypoint>& waypoints, const TrajectoryConfig& config,
                        std::uint64_t seed)
-    : position_(positionsOf(waypoints), segmentDuration(waypoints, config)),
+    : rest_s_(config.rest_at_start_s),
+      position_(positionsOf(waypoints), segmentDuration(waypoints, config)),
       look_at_(targetsOf(waypoints), segmentDuration(waypoints, config)),
       jitter_(config.jitter, seed) {}
 
+Eigen::Vector3d Trajectory::swayWeight(double t_s) const {
+  if (rest_s_ <= 0.0) return {1.0, 0.0, 0.0};
+  const double T = TrajectoryConfig::kSwayFadeIn_s;
+  const double x = (t_s - rest_s_) / T;
+  if (x <= 0.0) return Eigen::Vector3d::Zero();
+  if (x >= 1.0) return {1.0, 0.0, 0.0};
+  // smootherstep 6x^5 - 15x^4 + 10x^3 and its first two derivatives in t.
+  return {x * x * x * (x * (6.0 * x - 15.0) + 10.0), 30.0 * x * x * (x - 1.0) * (x - 1.0) / T,
+          60.0 * x * (2.0 * x - 1.0) * (x - 1.0) / (T * T)};
+}
+
 Eigen::Vector3d Trajectory::position(double t_s, int derivative) const {
-  return position_.evaluate(t_s, derivative) + jitter_.translation(t_s, derivative);
+  const Eigen::Vector3d spline = rest_s_ > 0.0 && t_s < rest_s_ && derivative > 0
+                                     ? Eigen::Vector3d::Zero()
+                                     : position_.evaluate(splineTime(t_s), derivative);
+  // The sway runs on the spline's clock; product rule for its fade-in weight w(t).
+  const Eigen::Vector3d w = swayWeight(t_s);
+  const double ts = splineTime(t_s);
+  Eigen::Vector3d sway = w[0] * jitter_.translation(ts, derivative);
+  if (derivative >= 1 && w[1] != 0.0) {
+    sway += (derivative == 1 ? 1.0 : 2.0) * w[1] * jitter_.translation(ts, derivative - 1);
+  }
+  if (derivative == 2 && w[2] != 0.0) sway += w[2] * jitter_.translation(ts, 0);
+  return spline + sway;
 }
 
 Eigen::Matrix3d Trajectory::rotation(double t_s) const {
   // R_W_C = R_lookat(p(t), target(t)) * Exp(theta_jitter(t)).
-  const Eigen::Matrix3d R_look = lookAt(position_.evaluate(t_s), look_at_.evaluate(t_s)).linear();
-  const Eigen::Vector3d theta = jitter_.rotation(t_s);
+  const double ts = splineTime(t_s);
+  const Eigen::Matrix3d R_look = lookAt(position_.evaluate(ts), look_at_.evaluate(ts)).linear();
+  const Eigen::Vector3d theta = swayWeight(t_s)[0] * jitter_.rotation(ts);
   const double angle = theta.norm();
   const Eigen::Matrix3d R_jitter = angle > 0.0
                                        ? Eigen::AngleAxisd(angle, theta / angle).toRotationMatrix()

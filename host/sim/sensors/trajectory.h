@@ -3,6 +3,7 @@
 // from a second spline through look-at targets, and seeded hand-held sway on top. Pose, velocity,
 // acceleration and angular velocity at any time (for the IMU).
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -23,6 +24,12 @@ struct TrajectoryConfig {
   /// Lower bound on the time between waypoints (also used when waypoints coincide).
   double min_segment_duration_s = 0.5;
   HandJitterConfig jitter;
+  /// > 0: the camera first stands still this long at the first waypoint (no sway: resting on
+  /// something, as a robot or a VIO rig does before it starts), then the sway fades in over
+  /// kSwayFadeIn_s (a C2 ramp, so velocity and acceleration stay continuous). 0: the path starts
+  /// at once and the sway is on from t = 0 (the behaviour of every earlier recording).
+  double rest_at_start_s = 0.0;
+  static constexpr double kSwayFadeIn_s = 1.0;
 
   /// Throws InputError naming the first bad field.
   void validate() const;
@@ -45,7 +52,7 @@ class Trajectory {
   Trajectory(const std::vector<Waypoint>& waypoints, const TrajectoryConfig& config,
              std::uint64_t seed);
 
-  double duration_s() const { return position_.duration_s(); }
+  double duration_s() const { return rest_s_ + position_.duration_s(); }
   /// Camera-to-world pose; t is clamped to [0, duration].
   Eigen::Isometry3d pose(double t_s) const;
   /// Pose and derivatives; t is clamped to [0, duration]. Translation derivatives are exact;
@@ -59,7 +66,11 @@ class Trajectory {
  private:
   Eigen::Matrix3d rotation(double t_s) const;  // unclamped (splines extrapolate smoothly)
   Eigen::Vector3d position(double t_s, int derivative) const;
+  /// Spline time (0 during the rest) and the sway's weight and its derivatives at t.
+  double splineTime(double t_s) const { return rest_s_ > 0.0 ? std::max(0.0, t_s - rest_s_) : t_s; }
+  Eigen::Vector3d swayWeight(double t_s) const;
 
+  double rest_s_ = 0.0;
   QuinticBSpline position_;
   QuinticBSpline look_at_;
   HandJitter jitter_;
