@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <lcm/lcm-cpp.hpp>
 #include <sstream>
@@ -36,16 +37,34 @@ std::string readText(const fs::path& path) {
   return text.str();
 }
 
+std::string namespaceUnavailable() {
+  if (std::system("unshare --net true > /dev/null 2>&1") != 0) {
+    return "network namespaces are not permitted here ('unshare --net' failed: needs root or "
+           "CAP_SYS_ADMIN); the cross-process LCM tests run only inside a namespace of their own "
+           "so that no traffic can leave the machine";
+  }
+  if (std::system("command -v lcm-logger > /dev/null 2>&1") != 0) {
+    return "lcm-logger not found (Debian: apt-get install liblcm-bin)";
+  }
+  return "";
+}
+
+std::string namespacePrologue(const fs::path& dir, const std::string& channels) {
+  const std::string d = dir.string();
+  std::ostringstream s;
+  s << "ip link set lo up && ip route add 224.0.0.0/4 dev lo || exit 10\n"
+    << "lcm-logger -q -f -c \"" << channels << "\" --lcm-url=\"" << lcm_io::kDefaultUrl << "\" "
+    << d << "/outputs.lcm > " << d << "/logger.log 2>&1 &\n"
+    << "LOGGER=$!\n";
+  return s.str();
+}
+
 std::string namespaceReplayScript(const fs::path& dir, int frames) {
   const std::string d = dir.string();
   const std::string url = lcm_io::kDefaultUrl;
   std::ostringstream s;
-  s << "ip link set lo up && ip route add 224.0.0.0/4 dev lo || exit 10\n"
-    << "lcm-logger -q -f -c "
-       "\"STRATA_MESH_UPDATE|STRATA_MAP_STATS|STRATA_ESDF_SLICE|STRATA_KEYFRAME_SCORE\" "
-       "--lcm-url=\""
-    << url << "\" " << d << "/outputs.lcm > " << d << "/logger.log 2>&1 &\n"
-    << "LOGGER=$!\n"
+  s << namespacePrologue(
+           dir, "STRATA_MESH_UPDATE|STRATA_MAP_STATS|STRATA_ESDF_SLICE|STRATA_KEYFRAME_SCORE")
     << STRATA_MAPPER_BIN << " --url \"" << url << "\" --map " << d
     << "/map.strata --no-change --mesh-rate 0 --esdf-rate 2 > " << d << "/mapper.log 2>&1 &\n"
     << "MAPPER=$!\n"

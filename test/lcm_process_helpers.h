@@ -21,6 +21,16 @@ namespace strata::test {
 std::filesystem::path freshTestDir(const std::string& name);
 std::string readText(const std::filesystem::path& path);
 
+/// Why processes cannot talk over multicast in a network namespace of their own here, so that
+/// no traffic can leave the machine ("" when they can): 'unshare --net' refused (it needs root or
+/// CAP_SYS_ADMIN), or no lcm-logger to record what they publish.
+std::string namespaceUnavailable();
+
+/// The first lines of a script for `unshare --net bash -c` (no single quotes): loopback up with
+/// multicast routed to it (exit 10 otherwise), lcm-logger recording the channels matching the
+/// regex `channels` to dir/outputs.lcm in the background, its pid in $LOGGER.
+std::string namespacePrologue(const std::filesystem::path& dir, const std::string& channels);
+
 /// Bash (no single quotes) for `unshare --net bash -c`: loopback up, multicast routed to it,
 /// lcm-logger recording the mapper's outputs to dir/outputs.lcm, strata-mapper (map saved to
 /// dir/map.strata on SIGTERM), strata-play of `frames` frames of the room's session 0 as fast as

@@ -1,14 +1,18 @@
-// `strata sim --stereo` read back with the EuRoC reader, and the grey camera's exposure noise.
+// `strata sim --stereo` read back with the EuRoC reader, played with its RGB-D frames by
+// strata-play --with-stereo, and the grey camera's exposure noise.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
+#include <lcm/lcm-cpp.hpp>
 
 #include "cli/sim_command.h"
 #include "cli/sim_setup.h"
 #include "io/euroc_dataset.h"
 #include "io/tum_format.h"
+#include "lcm/channels.h"
+#include "player/play_run.h"
 #include "sim/primitives.h"
 #include "sim/sensors/analytic_ray_scene.h"
 #include "sim/sensors/grey_camera.h"
@@ -32,7 +36,7 @@ class EurocSim : public testing::Test {
     fs::remove_all(out_);
     apps::SimOptions o;
     o.sessions = 1;
-    o.max_frames = 2;
+    o.max_frames = 44;  // RGB-D every ~0.5 s of the ~22 s path: two within the grey second
     o.out_dir = out_.string();
     o.quiet = true;
     o.stereo = true;
@@ -84,6 +88,23 @@ TEST_F(EurocSim, CalibrationCountsAndTimestampsReadBack) {
   EXPECT_GT(left_mean, 20.0);  // lit, textured room
   EXPECT_LT(left_mean, 240.0);
   EXPECT_GT(differ, static_cast<int>(images.left.pixels.size() / 4));  // another viewpoint
+}
+
+TEST_F(EurocSim, CalibrationAloneReadsAsTheReaderDoes) {
+  const EurocDataset d = EurocDataset::open(session().string());
+  for (const bool right : {true, false}) {
+    const Calibration alone = readCalibration((session() / "mav0").string(), right);
+    ASSERT_EQ(alone.cameras.size(), right ? 2u : 1u);
+    for (std::size_t i = 0; i < alone.cameras.size(); ++i) {
+      const CameraCalibration& a = alone.cameras[i];
+      const CameraCalibration& b = d.calibration().cameras[i];
+      EXPECT_EQ(a.name, b.name);
+      EXPECT_EQ(a.width_px, b.width_px);
+      EXPECT_EQ(a.fu_px, b.fu_px);
+      EXPECT_TRUE(a.T_B_C.isApprox(b.T_B_C, 1e-15));
+    }
+    EXPECT_EQ(alone.imu.gyro_noise_density, d.calibration().imu.gyro_noise_density);
+  }
 }
 
 TEST_F(EurocSim, TruthIsTheRgbdTrajectoryThroughTheMounting) {
@@ -144,6 +165,83 @@ TEST_F(EurocSim, ImuIntegratesToTheTruth) {
   EXPECT_LT((v - gt[last].velocity_W).norm(), 0.015);           // measured 3 mm/s
   const double angle_rad = Eigen::AngleAxisd(R.transpose() * gt[last].T_W_B.linear()).angle();
   EXPECT_LT(angle_rad, 0.005);
+}
+
+/// What strata-play sent on memq://, in arrival order: (channel, utime) and frames' pose flags.
+struct Sent {
+  std::vector<std::pair<std::string, std::int64_t>> order;
+  std::vector<bool> frame_has_pose;
+  template <typename Message>
+  Message decode(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
+    Message m;
+    EXPECT_GT(m.decode(buffer->data, 0, static_cast<int>(buffer->data_size)), 0);
+    order.emplace_back(channel, m.utime);
+    return m;
+  }
+  void onRgbd(const lcm::ReceiveBuffer* b, const std::string& c) {
+    frame_has_pose.push_back(decode<rgbd_frame_t>(b, c).has_pose);
+  }
+  void onStereo(const lcm::ReceiveBuffer* b, const std::string& c) { decode<stereo_image_t>(b, c); }
+  void onImu(const lcm::ReceiveBuffer* b, const std::string& c) { decode<imu_t>(b, c); }
+  void onPose(const lcm::ReceiveBuffer* b, const std::string& c) { decode<pose_t>(b, c); }
+  std::vector<std::int64_t> utimes(const std::string& channel) const {
+    std::vector<std::int64_t> out;
+    for (const auto& [c, utime] : order)
+      if (c == channel) out.push_back(utime);
+    return out;
+  }
+};
+
+TEST_F(EurocSim, PlayWithStereoSendsGreyAndRgbdOnOneClockWithoutPoses) {
+  lcm::LCM lcm("memq://");
+  Sent sent;
+  lcm.subscribe(lcm_io::kRgbdChannel, &Sent::onRgbd, &sent);
+  lcm.subscribe(lcm_io::kStereoChannel, &Sent::onStereo, &sent);
+  lcm.subscribe(lcm_io::kImuChannel, &Sent::onImu, &sent);
+  lcm.subscribe(lcm_io::kPoseChannel, &Sent::onPose, &sent);
+  apps::PlayOptions o;
+  o.dataset = session().string();
+  o.with_stereo = true;
+  o.poses = false;
+  o.rate = 20.0;
+  o.end_session = false;  // no mapper to answer
+  o.quiet = true;
+  ASSERT_EQ(apps::runPlay(o, lcm), 0);
+  while (lcm.handleTimeout(0) > 0) {
+  }
+
+  const EurocDataset d = EurocDataset::open(session().string());
+  const std::vector<tum::TimedPose> rgbd =
+      tum::readTrajectory((session() / "groundtruth.txt").string());
+  std::vector<double> inside;  // RGB-D frames within the grey recording (t = 0 .. 1 s)
+  for (const tum::TimedPose& p : rgbd) {
+    if (p.timestamp_s <= d.frames().back().timestamp_ns * 1e-9) inside.push_back(p.timestamp_s);
+  }
+  ASSERT_EQ(inside.size(), 2u);
+  EXPECT_TRUE(sent.utimes(lcm_io::kPoseChannel).empty()) << "--no-poses sends no pose";
+  for (bool has_pose : sent.frame_has_pose) EXPECT_FALSE(has_pose);
+  for (std::size_t i = 1; i < sent.order.size(); ++i) {
+    EXPECT_LE(sent.order[i - 1].second, sent.order[i].second) << "out of time order at " << i;
+  }
+  // One clock: every stamp is the first message's plus its recording time (both start at 0).
+  ASSERT_EQ(sent.order.front().first, lcm_io::kImuChannel);
+  const std::int64_t base = sent.order.front().second;
+  const std::vector<std::int64_t> frames = sent.utimes(lcm_io::kRgbdChannel);
+  ASSERT_EQ(frames.size(), inside.size()) << "frames outside the grey recording are not sent";
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    EXPECT_EQ(frames[i], base + std::llround(inside[i] * 1e6));
+  }
+  // The grey stream goes on through the first grey frame at or after the last RGB-D frame.
+  const std::vector<std::int64_t> grey = sent.utimes(lcm_io::kStereoChannel);
+  std::size_t expected = 0;
+  while (d.frames()[expected].timestamp_ns * 1e-9 < inside.back() - 1e-7) ++expected;
+  ASSERT_EQ(grey.size(), expected + 1);
+  for (std::size_t k = 0; k < grey.size(); ++k) {
+    EXPECT_EQ(grey[k], base + d.frames()[k].timestamp_ns / 1000);
+  }
+  const std::vector<std::int64_t> imu = sent.utimes(lcm_io::kImuChannel);
+  EXPECT_EQ(imu.back(), grey.back()) << "the IMU sample at the last grey frame's stamp";
+  EXPECT_EQ(imu.size(), static_cast<std::size_t>(grey.size() - 1) * 10 + 1);  // 200 Hz, 20 Hz
 }
 
 TEST(EurocGreyExposure, GainAndOffsetPerFrameSeeded) {

@@ -31,14 +31,7 @@ namespace {
 namespace fs = std::filesystem;
 
 TEST(LcmProcesses, PlayerAndMapperReplayASessionInTheirOwnNetworkNamespace) {
-  if (std::system("unshare --net true > /dev/null 2>&1") != 0) {
-    GTEST_SKIP() << "network namespaces are not permitted here ('unshare --net' failed: needs "
-                    "root or CAP_SYS_ADMIN); the cross-process LCM test runs only inside a "
-                    "namespace of its own so that no traffic can leave the machine";
-  }
-  if (std::system("command -v lcm-logger > /dev/null 2>&1") != 0) {
-    GTEST_SKIP() << "lcm-logger not found (Debian: apt-get install liblcm-bin)";
-  }
+  if (const std::string why = namespaceUnavailable(); !why.empty()) GTEST_SKIP() << why;
   constexpr int kFrames = 20;
   const fs::path dir = freshTestDir("processes");
   const std::string script = namespaceReplayScript(dir, kFrames);

@@ -4,7 +4,6 @@
 // mapper killed and restarted continues from its last saved map.
 #include <CLI/CLI.hpp>
 #include <atomic>
-#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -13,22 +12,11 @@
 #include "mapper_node/mapper_core.h"
 #include "mapper_node/mapper_node.h"
 #include "core/error.h"
+#include "lcm/stop_signal.h"
 #include "map/map_file.h"
 #include "vk/vk.h"
 
 namespace {
-
-std::atomic<bool> g_stop{false};
-
-extern "C" void onStopSignal(int) { g_stop = true; }
-
-void installStopHandlers() {
-  struct sigaction action {};
-  action.sa_handler = onStopSignal;
-  sigemptyset(&action.sa_mask);
-  sigaction(SIGINT, &action, nullptr);
-  sigaction(SIGTERM, &action, nullptr);
-}
 
 /// The map to continue: --map's file when it exists. A file that does not load (torn, wrong
 /// checksum, other version) is refused with InputError and left as it is: the mapper must not
@@ -57,7 +45,7 @@ std::optional<strata::TsdfMap> resumeMap(const strata::apps::MapperOptions& opti
   }
 }
 
-int runMapper(const strata::apps::MapperOptions& options) {
+int runMapper(const strata::apps::MapperOptions& options, const std::atomic<bool>& stop) {
   using namespace strata;
   options.validate();
   const std::optional<TsdfMap> start_map = resumeMap(options);  // before the device
@@ -76,7 +64,7 @@ int runMapper(const strata::apps::MapperOptions& options) {
                options.channels.camera_info.c_str(), options.channels.command.c_str(),
                options.map.voxel_size_m, context->deviceName().c_str(),
                options.map_path.empty() ? "(nowhere: --map '')" : options.map_path.c_str());
-  const bool saved = node.run(g_stop);
+  const bool saved = node.run(stop);
   const apps::MapperCounters c = node.counters();
   std::printf(
       "strata-mapper: received %lld frames, fused %lld (%.1f ms each on average), dropped %lld "
@@ -99,9 +87,9 @@ int main(int argc, char** argv) {
   strata::apps::MapperOptions options;
   strata::apps::addMapperOptions(app, options);
   CLI11_PARSE(app, argc, argv);
-  installStopHandlers();
+  const std::atomic<bool>& stop = strata::lcm_io::installStopSignals();
   try {
-    return runMapper(options);
+    return runMapper(options, stop);
   } catch (const strata::InputError& e) {
     std::fprintf(stderr, "strata-mapper: input error: %s\n", e.what());
     return 2;

@@ -5,7 +5,6 @@
 
 #include "cli/progress.h"
 #include "core/error.h"
-#include "io/euroc_dataset.h"
 #include "lcm/convert_stereo.h"
 #include "lcm/lcm_time.h"
 
@@ -49,12 +48,33 @@ std::vector<euroc::Event> pickEvents(const euroc::EurocDataset& d, const PlayOpt
 
 }  // namespace
 
+EurocStream::EurocStream(const std::string& folder, const PlayOptions& o, lcm::LCM& lcm)
+    : dataset_(euroc::EurocDataset::open(folder)),
+      lcm_(lcm),
+      stereo_channel_(o.stereo_channel),
+      imu_channel_(o.imu_channel),
+      left_name_(dataset_.calibration().cameras[0].name),
+      right_name_(dataset_.stereo() ? dataset_.calibration().cameras[1].name : "") {}
+
+void EurocStream::publish(const euroc::Event& e, std::int64_t utime) {
+  if (e.kind == euroc::Event::Kind::kImu) {
+    const euroc::ImuSample& s = dataset_.imu()[e.index];
+    sent_.bytes += publishOrThrow(lcm_, imu_channel_,
+                                  lcm_io::encodeImu({utime, "imu0", s.gyro_rad_s, s.accel_mps2}));
+    ++sent_.imu_samples;
+    return;
+  }
+  const euroc::StereoImages images = dataset_.loadImages(e.index);
+  sent_.bytes += publishOrThrow(
+      lcm_, stereo_channel_,
+      lcm_io::encodeStereo(images.left, images.right, utime,
+                           static_cast<std::int64_t>(sent_.frames), left_name_, right_name_));
+  ++sent_.frames;
+}
+
 EurocPlaySummary playEuroc(const PlayOptions& o, lcm::LCM& lcm) {
-  const euroc::EurocDataset d = euroc::EurocDataset::open(o.dataset);
-  const std::vector<euroc::Event> events = pickEvents(d, o);
-  const std::string left_name = d.calibration().cameras[0].name;
-  const std::string right_name = d.stereo() ? d.calibration().cameras[1].name : "";
-  EurocPlaySummary summary;
+  EurocStream stream(o.dataset, o, lcm);
+  const std::vector<euroc::Event> events = pickEvents(stream.dataset(), o);
   std::size_t frame_events = 0;
   for (const euroc::Event& e : events) frame_events += e.kind == euroc::Event::Kind::kFrame;
   ProgressBar progress("sending", frame_events, !o.quiet);
@@ -68,22 +88,11 @@ EurocPlaySummary playEuroc(const PlayOptions& o, lcm::LCM& lcm) {
                                     std::chrono::duration_cast<Clock::duration>(
                                         std::chrono::duration<double>(offset_ns * 1e-9 / o.rate)));
     }
-    const std::int64_t utime = o.restamp ? base_utime + offset_ns / 1000 : e.timestamp_ns / 1000;
-    if (e.kind == euroc::Event::Kind::kImu) {
-      const euroc::ImuSample& s = d.imu()[e.index];
-      summary.bytes += publishOrThrow(
-          lcm, o.imu_channel, lcm_io::encodeImu({utime, "imu0", s.gyro_rad_s, s.accel_mps2}));
-      ++summary.imu_samples;
-    } else {
-      const euroc::StereoImages images = d.loadImages(e.index);
-      summary.bytes += publishOrThrow(
-          lcm, o.stereo_channel,
-          lcm_io::encodeStereo(images.left, images.right, utime,
-                               static_cast<std::int64_t>(summary.frames), left_name, right_name));
-      progress.update(++summary.frames);
-    }
+    stream.publish(e, o.restamp ? base_utime + offset_ns / 1000 : e.timestamp_ns / 1000);
+    if (e.kind == euroc::Event::Kind::kFrame) progress.update(stream.sent().frames);
   }
   progress.finish();
+  EurocPlaySummary summary = stream.sent();
   summary.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return summary;
 }

@@ -18,6 +18,12 @@ void PlayOptions::validate() const {
     throw InputError("--depth-encoding must be depth16 or depth32f");
   }
   if (!(mapper_timeout_s > 0.0)) throw InputError("--mapper-timeout must be > 0");
+  if (with_stereo && rate == 0.0) {
+    throw InputError(
+        "--with-stereo needs --rate > 0 (a VIO takes the grey stream at its pace; "
+        "there is no flow control for it)");
+  }
+  if (with_stereo && imu) throw InputError("--with-stereo sends mav0/'s IMU; drop --imu");
 }
 
 void addPlayOptions(CLI::App& app, PlayOptions& o) {
@@ -44,6 +50,13 @@ void addPlayOptions(CLI::App& app, PlayOptions& o) {
   app.add_flag("--separate-poses", o.separate_poses,
                "Send poses on the pose channel (the mapper interpolates) instead of in frames");
   app.add_flag("--imu", o.imu, "Synthetic sessions: also send IMU samples");
+  app.add_flag_callback(
+      "--no-poses", [&o] { o.poses = false; },
+      "Send frames without poses and nothing on the pose channel (strata-vio provides them)");
+  app.add_flag("--with-stereo", o.with_stereo,
+               "A `strata sim --stereo` session folder: also send its mav0/ grey stereo + IMU, "
+               "interleaved with the RGB-D frames in time order (RGB-D frames outside the grey "
+               "recording are not sent; needs --rate > 0)");
   app.add_option("--depth-encoding", o.encoding.depth, "depth16 (compact) or depth32f (exact)")
       ->capture_default_str();
   app.add_flag_callback(

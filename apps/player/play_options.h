@@ -38,6 +38,12 @@ struct PlayOptions {
   bool separate_poses = false;
   /// Synthetic sessions: IMU samples between frames on the IMU channel.
   bool imu = false;
+  /// false (--no-poses): frames go without a pose and nothing is sent on the pose channel; a pose
+  /// source on that channel (strata-vio) provides them.
+  bool poses = true;
+  /// A `strata sim --stereo` session folder: its mav0/ grey stereo + IMU are sent too, between
+  /// the RGB-D frames in time order on their clock (player/play_with_stereo.h). Needs rate > 0.
+  bool with_stereo = false;
   lcm_io::FrameEncoding encoding;
   /// Stamps = now + the recording's offsets (a replay is newer than what the mapper has seen);
   /// false keeps the recording's own stamps.

@@ -42,7 +42,7 @@ std::size_t FramePublisher::publish(const RgbdFrame& frame, const CameraIntrinsi
                    lcm_io::encodeCameraInfo(intrinsics, camera_id_, utime));
     next_camera_info_utime_ = utime + kCameraInfoPeriodUs;
   }
-  if (!encoding_.with_pose) {
+  if (!encoding_.with_pose && !channels_.pose.empty()) {
     publishOrThrow(lcm_, channels_.pose, lcm_io::encodePose(frame.T_W_C, utime));
   }
   const rgbd_frame_t message =

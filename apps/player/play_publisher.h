@@ -15,6 +15,7 @@
 namespace strata::apps {
 
 struct PublisherChannels {
+  /// pose "": a frame without its pose in it has none sent either (another process provides it).
   std::string rgbd, camera_info, pose, imu, command;
   static PublisherChannels defaults();
 };

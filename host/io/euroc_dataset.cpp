@@ -131,7 +131,10 @@ Calibration readCalibration(const std::string& folder, bool use_right_camera) {
   Calibration calibration;
   const auto camera = [&](const char* name) {
     const fs::path yaml = mav0 / name / "sensor.yaml";
-    return parseCameraYaml(readText(yaml, kMaxEurocYamlBytes, "camera sensor.yaml"), yaml.string());
+    CameraCalibration c =
+        parseCameraYaml(readText(yaml, kMaxEurocYamlBytes, "camera sensor.yaml"), yaml.string());
+    c.name = name;  // as open() names them
+    return c;
   };
   calibration.cameras.push_back(camera("cam0"));
   if (use_right_camera && fs::exists(mav0 / "cam1" / "sensor.yaml")) {
