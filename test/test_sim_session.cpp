@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -37,6 +39,24 @@ TEST(SimSession, PathsStayClearOfEverySurfaceInEveryShippedWorld) {
         ASSERT_GT(session.scene().signedDistance(p), 0.1f)
             << name << " session " << s << " camera at " << p.transpose();
       }
+    }
+  }
+}
+
+TEST(SimSession, ViewsTurnAtAHandHeldRateInEveryShippedWorld) {
+  // A hand-held camera turns at tens of degrees per second; the office's paths once flipped by
+  // up to 180 degrees in milliseconds where the look-at target switched sides of the path.
+  for (const std::string name : {"room", "office", "warehouse"}) {
+    const auto world = loadShipped(name);
+    for (int s = 0; s < world->sessionCount(); ++s) {
+      const SimSessionDataset session(world, s, smallConfig(0));
+      const Trajectory& trajectory = session.trajectory();
+      double fastest_deg_s = 0.0;
+      for (double t = 0.0; t < trajectory.duration_s(); t += 0.005) {
+        fastest_deg_s = std::max(fastest_deg_s,
+                                 trajectory.state(t).angular_velocity_C.norm() * 180.0 / M_PI);
+      }
+      EXPECT_LT(fastest_deg_s, 120.0) << name << " session " << s;
     }
   }
 }
