@@ -13,6 +13,7 @@
 #include "io/tum_format.h"
 #include "lcm/channels.h"
 #include "player/play_run.h"
+#include "odometry/pipeline/vio_replay.h"
 #include "sim/primitives.h"
 #include "sim/sensors/analytic_ray_scene.h"
 #include "sim/sensors/grey_camera.h"
@@ -135,6 +136,36 @@ TEST_F(EurocSim, TruthIsTheRgbdTrajectoryThroughTheMounting) {
             1e-6);
 }
 
+// The recording in memory (what `strata demo --vio` replays) is what was written: same frame
+// times, IMU samples, truth and images.
+TEST_F(EurocSim, InMemoryRecordingIsWhatWasWritten) {
+  const EurocDataset d = EurocDataset::open(session().string());
+  const auto world = apps::loadWorld("", 0, 1);
+  const sim::SimSessionDataset sim_session(world, 0, apps::sessionConfig(30.0, 2, true, false));
+  sim::StereoRecordingConfig config = apps::stereoRecordingConfig(160, 120, true);
+  config.duration_s = 1.0;
+  const sim::StereoRecording recording(sim_session, config);
+  ASSERT_EQ(recording.frameTimestamps().size(), d.frames().size());
+  for (std::size_t k = 0; k < d.frames().size(); ++k)
+    EXPECT_EQ(recording.frameTimestamps()[k], d.frames()[k].timestamp_ns);
+  ASSERT_EQ(recording.imu().size(), d.imu().size());
+  ASSERT_EQ(recording.groundTruth().size(), d.groundTruth().size());
+  for (std::size_t i = 0; i < d.imu().size(); i += 7) {
+    EXPECT_EQ(recording.imu()[i].timestamp_ns, d.imu()[i].timestamp_ns);
+    EXPECT_LT((recording.imu()[i].accel_mps2 - d.imu()[i].accel_mps2).norm(), 1e-9);
+    EXPECT_LT((recording.imu()[i].gyro_rad_s - d.imu()[i].gyro_rad_s).norm(), 1e-12);
+    EXPECT_LT(
+        (recording.groundTruth()[i].T_W_B.matrix() - d.groundTruth()[i].T_W_B.matrix()).norm(),
+        1e-9);
+  }
+  EXPECT_TRUE(recording.calibration().T_C0_C1().isApprox(d.calibration().T_C0_C1(), 1e-12));
+  const sim::GreyFrame frame = recording.renderFrame(10);
+  const StereoImages images = d.loadImages(10);
+  ASSERT_EQ(frame.eyes.size(), 2u);
+  EXPECT_EQ(frame.eyes[0].pixels, images.left.pixels);
+  EXPECT_EQ(frame.eyes[1].pixels, images.right.pixels);
+}
+
 // Strapdown integration of the recorded IMU (biases from the truth removed) from a truth state
 // lands on the truth 0.5 s later: the IMU, the mounting and the body truth agree.
 TEST_F(EurocSim, ImuIntegratesToTheTruth) {
@@ -242,6 +273,32 @@ TEST_F(EurocSim, PlayWithStereoSendsGreyAndRgbdOnOneClockWithoutPoses) {
   const std::vector<std::int64_t> imu = sent.utimes(lcm_io::kImuChannel);
   EXPECT_EQ(imu.back(), grey.back()) << "the IMU sample at the last grey frame's stamp";
   EXPECT_EQ(imu.size(), static_cast<std::size_t>(grey.size() - 1) * 10 + 1);  // 200 Hz, 20 Hz
+}
+
+// The poses `strata demo --vio` fuses: the left camera between two tracked frames, nothing before
+// the first, after the last or across a gap.
+TEST(VioReplay, CameraPoseBetweenTrackedFramesNoneAcrossGaps) {
+  std::vector<odometry::PipelineFrame> tracked(3);
+  for (std::size_t k = 0; k < tracked.size(); ++k) {
+    tracked[k].status = odometry::VioStatus::kTracking;
+    tracked[k].T_W_C.translation() = Eigen::Vector3d(0.1 * k, 0.0, 1.0);
+  }
+  tracked[0].timestamp_ns = 1'000'000'000;
+  tracked[1].timestamp_ns = 1'050'000'000;
+  tracked[2].timestamp_ns = 1'150'000'000;  // a frame missing before it
+  tracked[1].T_W_C.linear() = expSO3(Eigen::Vector3d(0.0, 0.0, 0.2));
+  const std::int64_t gap = 75'000'000;
+  const auto mid = odometry::interpolateCameraPose(tracked, 1'025'000'000, gap);
+  ASSERT_TRUE(mid.has_value());
+  EXPECT_LT((mid->translation() - Eigen::Vector3d(0.05, 0.0, 1.0)).norm(), 1e-12);
+  EXPECT_LT((mid->linear() - expSO3(Eigen::Vector3d(0.0, 0.0, 0.1))).norm(), 1e-12);
+  const auto at = odometry::interpolateCameraPose(tracked, 1'050'000'000, gap);
+  ASSERT_TRUE(at.has_value());
+  EXPECT_TRUE(at->isApprox(tracked[1].T_W_C));
+  EXPECT_FALSE(odometry::interpolateCameraPose(tracked, 999'999'999, gap).has_value());
+  EXPECT_FALSE(odometry::interpolateCameraPose(tracked, 1'100'000'000, gap).has_value());
+  EXPECT_FALSE(odometry::interpolateCameraPose(tracked, 1'150'000'001, gap).has_value());
+  EXPECT_TRUE(odometry::interpolateCameraPose(tracked, 1'100'000'000, 2 * gap).has_value());
 }
 
 TEST(EurocGreyExposure, GainAndOffsetPerFrameSeeded) {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 
 #include "cli/demo_command.h"
 #include "cli/sim_command.h"
@@ -89,6 +90,31 @@ TEST(SimSession, FramesAreValidAndDriftOnlyTouchesTheGivenPoses) {
   EXPECT_GT(drift_m, 0.0);
   EXPECT_LT(drift_m, 0.5);
   EXPECT_THROW(session.load(session.size()), InputError);
+}
+
+TEST(SimSession, ReplacedPosesDropFramesWithoutOneAndKeepEachFramesNoise) {
+  const auto world = loadShipped("room");
+  SimSessionDataset session(world, 1, smallConfig(6));
+  const RgbdFrame before = session.load(3);
+  const std::vector<Eigen::Isometry3d> truth = session.truePoses();
+  const double t3 = session.timestamp(3);
+  Eigen::Isometry3d shifted = truth[3];
+  shifted.translation().x() += 0.1;
+  std::vector<std::optional<Eigen::Isometry3d>> poses(6);
+  poses[2] = truth[2];
+  poses[3] = shifted;
+  poses[5] = truth[5];
+  EXPECT_THROW(session.replaceGivenPoses({}), InputError);
+  session.replaceGivenPoses(poses);
+  ASSERT_EQ(session.size(), 3u);
+  ASSERT_EQ(session.truePoses().size(), 3u);
+  ASSERT_EQ(session.givenPoses().size(), 3u);
+  const RgbdFrame after = session.load(1);
+  EXPECT_EQ(after.depth.depth_m, before.depth.depth_m) << "the same frame draws the same noise";
+  EXPECT_TRUE(after.T_W_C.isApprox(shifted));
+  EXPECT_TRUE(session.truePoses()[1].isApprox(truth[3]));
+  EXPECT_EQ(session.timestamp(1), t3);
+  EXPECT_THROW(session.load(3), InputError);
 }
 
 TEST(SimCommand, WritesReadableTumSessionsWithGroundTruthAndImu) {

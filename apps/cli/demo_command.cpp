@@ -87,6 +87,29 @@ change::WorldEvaluation evaluate(const sim::World& world, const DiffResult& resu
   return change::evaluateWorld(world, objects, result.static_mesh, seen, eval_config);
 }
 
+/// The world's sessions; with --vio on poses from the VIO (`vio` receives what each run measured).
+Sessions makeSessions(const std::shared_ptr<const sim::World>& world,
+                      const sim::SimSessionConfig& config, const DemoOptions& o,
+                      std::vector<VioSessionResult>& vio) {
+  std::vector<std::shared_ptr<sim::SimSessionDataset>> simulated;
+  std::size_t stereo_frames = 0;
+  for (int s = 0; s < world->sessionCount(); ++s) {
+    simulated.push_back(std::make_shared<sim::SimSessionDataset>(world, s, config));
+    if (o.vio.enabled) stereo_frames += vioFrameCount(*simulated.back(), o.vio);
+  }
+  if (o.vio.enabled) {
+    ProgressBar progress("render grey stereo + VIO", stereo_frames, !o.quiet);
+    std::size_t done = 0;
+    for (const auto& session : simulated)
+      vio.push_back(useVioPoses(*session, o.vio, !o.no_noise, progress, done));
+    progress.finish();
+  }
+  Sessions sessions;
+  for (auto& session : simulated)
+    sessions.push_back(std::make_unique<change::RecordingSession>(std::move(session)));
+  return sessions;
+}
+
 /// Fuses every session (recording what it saw) and runs change detection.
 DiffResult detectChanges(vk::Context& context, const MapConfig& map_config, const DiffRunInfo& info,
                          const Sessions& sessions, bool quiet, std::vector<TsdfMap>& maps) {
@@ -110,8 +133,10 @@ DemoReport runDemoPipeline(const DemoOptions& o) {
     check.dilation = o.select.dilation;
     check.validate();
   }
+  if (o.vio.enabled) o.vio.validate();
   const auto world = loadWorld(o.world, o.seed, o.sessions);
-  const sim::SimSessionConfig config = sessionConfig(30.0, o.frames, !o.no_noise, false);
+  sim::SimSessionConfig config = sessionConfig(30.0, o.frames, !o.no_noise, false);
+  config.trajectory.rest_at_start_s = o.restSeconds();
   const MapConfig map_config = changeMapConfig(o.voxel_size_m);  // min_weight counts frames
   DiffRunInfo info;
   info.change.min_weight = o.min_weight;
@@ -122,11 +147,8 @@ DemoReport runDemoPipeline(const DemoOptions& o) {
   info.map_config = map_config.describe();
   const fs::path out(o.out_dir);
   fs::create_directories(out);
-  Sessions sessions;
-  for (int s = 0; s < world->sessionCount(); ++s) {
-    sessions.push_back(std::make_unique<change::RecordingSession>(
-        std::make_shared<sim::SimSessionDataset>(world, s, config)));
-  }
+  std::vector<VioSessionResult> vio;
+  const Sessions sessions = makeSessions(world, config, o, vio);
   std::vector<TsdfMap> maps;
   const DiffResult result = detectChanges(*context, map_config, info, sessions, o.quiet, maps);
   const DiffFiles files = writeDiffFiles(result, o.out_dir);
@@ -139,7 +161,10 @@ DemoReport runDemoPipeline(const DemoOptions& o) {
       return sessionResult(result.sessions[s], maps[s], sessions[s]->session(), out);
     }));
   }
-  for (auto& r : results) report.sessions.push_back(r.get());
+  for (std::size_t s = 0; s < results.size(); ++s) {
+    report.sessions.push_back(results[s].get());
+    if (s < vio.size()) report.sessions.back().vio = vio[s];
+  }
   report.evaluation = evaluate(*world, result, sessions, info.change);
   if (o.incremental) {
     const IncrementalResult incremental =
@@ -165,7 +190,19 @@ CLI::App* addDemoCommand(CLI::App& app, DemoOptions& o) {
   demo->add_option("--min-weight", o.min_weight,
                    "Frames a voxel must be seen in to count as observed")
       ->capture_default_str();
-  demo->add_flag("--no-noise", o.no_noise, "Exact depth");
+  demo->add_flag("--no-noise", o.no_noise, "Exact depth (and with --vio exact images and IMU)");
+  demo->add_flag("--vio", o.vio.enabled,
+                 "Fuse on poses from stereo visual-inertial odometry over each session's "
+                 "simulated grey stereo + IMU (anchored at the true pose where tracking starts)");
+  demo->add_option("--vio-width", o.vio.width_px, "With --vio: grey camera width, px")
+      ->capture_default_str();
+  demo->add_option("--vio-height", o.vio.height_px, "With --vio: grey camera height, px")
+      ->capture_default_str();
+  demo->add_option("--vio-window", o.vio.window, "With --vio: keyframes in the VIO's window")
+      ->capture_default_str();
+  demo->add_option("--rest", o.rest_s,
+                   "Seconds the camera stands still before each path (default: 1.5 with --vio, "
+                   "0 without)");
   demo->add_option("--device", o.device, "Vulkan device index or name substring");
   demo->add_flag("--quiet", o.quiet, "No progress bar");
   demo->add_flag("--incremental", o.incremental,

@@ -2,10 +2,12 @@
 // `strata demo` (and `strata` with no command): the multi-session demo on a synthetic world:
 // simulate every session, fuse each into its own layer of a ChangeDetector on the device, discover
 // the objects that moved, score them and the static map against the world's ground truth, and
-// write meshes, label overlays and a report.
+// write meshes, label overlays and a report. With --vio the sessions are fused on poses from
+// visual-inertial odometry over their simulated grey stereo + IMU.
 #include <cstdint>
 #include <string>
 
+#include "cli/demo_vio.h"
 #include "cli/select_incremental.h"
 
 namespace CLI {
@@ -33,6 +35,12 @@ struct DemoOptions {
   /// Its moving-average window and dilation, keyframes (selection::demoLoopConfig's 1 and 0, the
   /// demo's keyframes being 2.8 s apart; the method's 5 and 1 suit overlapping keyframes).
   IncrementalOptions select;
+  /// Fuse every session on poses from visual-inertial odometry (cli/demo_vio.h).
+  DemoVioOptions vio;
+  /// Seconds the camera stands still before each path (the VIO's standstill start); < 0: 1.5 with
+  /// vio, 0 without.
+  double rest_s = -1.0;
+  double restSeconds() const { return rest_s >= 0.0 ? rest_s : (vio.enabled ? 1.5 : 0.0); }
 };
 
 struct DemoReport;

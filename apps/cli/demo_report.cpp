@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "core/atomic_file.h"
+#include "core/json_text.h"
 
 namespace strata::apps {
 namespace {
@@ -36,6 +37,20 @@ void writeMatches(std::ostringstream& out, const change::SessionObjectEvaluation
   out << "]";
 }
 
+void writeVio(std::ostringstream& out, const VioSessionResult& v) {
+  out << "{\"stereo_frames\": " << v.stereo_frames << ", \"tracked\": " << v.tracked
+      << ", \"failures\": " << v.failures
+      << ", \"first_tracking_s\": " << jsonNumber(v.first_tracking_s)
+      << ", \"rgbd_frames\": " << v.rgbd_frames << ", \"fused\": " << v.fused()
+      << ", \"skipped_before_tracking\": " << v.skipped_before_tracking
+      << ", \"skipped_in_gaps\": " << v.skipped_in_gaps
+      << ", \"skipped_after_tracking\": " << v.skipped_after_tracking
+      << ", \"ate_rmse_m\": " << jsonNumber(v.ate_rmse_m)
+      << ", \"ate_max_m\": " << jsonNumber(v.ate_max_m)
+      << ", \"rotation_rmse_deg\": " << jsonNumber(v.rotation_rmse_deg)
+      << ", \"render_s\": " << v.render_s << ", \"vio_s\": " << v.vio_s << "}";
+}
+
 void writeSession(std::ostringstream& out, const SessionResult& r,
                   const change::SessionObjectEvaluation& e) {
   const double n = r.frames > 0 ? static_cast<double>(r.frames) : 1.0;
@@ -52,6 +67,11 @@ void writeSession(std::ostringstream& out, const SessionResult& r,
       << ", \"mesh_fraction_within_voxel\": " << r.mesh.fraction_within
       << ", \"changed_object_ids\": " << idList(r.changed_ids)
       << ", \"discovered_objects\": " << r.objects << ",\n     ";
+  if (r.vio) {
+    out << "\"vio\": ";
+    writeVio(out, *r.vio);
+    out << ",\n     ";
+  }
   writeCounts(out, e.counts);
   out << ",\n     \"moved_objects_matched\": ";
   writeMatches(out, e);
@@ -67,6 +87,28 @@ void writeEvaluation(std::ostringstream& out, const change::WorldEvaluation& e) 
       << ", \"static_mesh_area_m2\": " << s.mesh_area_m2
       << ", \"static_ghost_area_m2\": " << s.ghost_area_m2
       << ", \"static_ghost_share\": " << s.ghostShare() << "},\n";
+}
+
+std::string summarizeVio(const DemoReport& report) {
+  std::ostringstream s;
+  s.precision(3);
+  s << "Poses from stereo VIO (anchored at the truth where tracking starts), fused poses against "
+       "the truth (RMSE, max):";
+  std::size_t frames = 0, before = 0, gaps = 0, after = 0, failures = 0;
+  for (const SessionResult& r : report.sessions) {
+    const VioSessionResult& v = *r.vio;
+    s << (r.session > 0 ? "," : "") << " session " << r.session << " " << 1000.0 * v.ate_rmse_m
+      << " / " << 1000.0 * v.ate_max_m << " mm";
+    frames += v.rgbd_frames;
+    before += v.skipped_before_tracking;
+    gaps += v.skipped_in_gaps;
+    after += v.skipped_after_tracking;
+    failures += v.failures;
+  }
+  s << "; " << before + gaps + after << " of " << frames << " RGB-D frames not fused (" << before
+    << " before tracking, " << gaps << " in tracking gaps, " << after << " after it), " << failures
+    << " tracking failures.";
+  return s.str();
 }
 
 }  // namespace
@@ -130,6 +172,7 @@ std::string summarizeDemo(const DemoReport& report, const std::string& out_dir) 
     << " % of its area on moved objects. Wrote the static mesh, per-session meshes (fused and "
     << "true), views, label overlays, object meshes and report.json to " << out_dir << "/.";
   if (!report.incremental_summary.empty()) s << " " << report.incremental_summary;
+  if (!report.sessions.empty() && report.sessions.front().vio) s << " " << summarizeVio(report);
   return s.str();
 }
 

@@ -5,10 +5,11 @@
 #include <string>
 #include <vector>
 
+#include "cli/demo_vio.h"
 #include "cli/diff_report.h"
 #include "cli/select_incremental.h"
-#include "eval/evaluation_world.h"
 #include "eval/accuracy.h"
+#include "eval/evaluation_world.h"
 
 namespace strata::apps {
 
@@ -25,6 +26,7 @@ struct SessionResult {
   eval::MeshAccuracy mesh;
   std::vector<int> changed_ids;  // objects changed since the previous session
   std::size_t objects = 0;       // discovered
+  std::optional<VioSessionResult> vio;  // --vio: the odometry the session was fused on
 };
 
 struct DemoReport {

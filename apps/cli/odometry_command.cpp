@@ -3,10 +3,9 @@
 #include <time.h>
 
 #include <CLI/CLI.hpp>
-#include <chrono>
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
-#include <opencv2/core.hpp>
 
 #include "cli/odometry_summary.h"
 #include "cli/progress.h"
@@ -14,27 +13,16 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "io/tum_format.h"
+#include "odometry/pipeline/vio_replay.h"
 
 namespace strata::apps {
 namespace {
-
-using Clock = std::chrono::steady_clock;
 
 // CPU time of the whole process: what the replay costs whatever else loads the machine.
 double processCpuSeconds() {
   timespec t{};
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
-double secondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-cv::Mat wrap(const GreyImage& image) {
-  if (image.empty()) return {};
-  return cv::Mat(image.height_px, image.width_px, CV_8UC1,
-                 const_cast<std::uint8_t*>(image.pixels.data()));
 }
 
 odometry::VioPipelineConfig pipelineConfig(const OdometryOptions& o,
@@ -48,10 +36,7 @@ odometry::VioPipelineConfig pipelineConfig(const OdometryOptions& o,
       throw InputError(o.session_dir +
                        ": --anchor-to-truth needs ground truth, the session has none");
     }
-    const auto* truth = &dataset.groundTruth();
-    config.anchor_W_B = [truth](std::int64_t t_ns) {
-      return euroc::interpolateGroundTruth(*truth, t_ns);
-    };
+    config.anchor_W_B = odometry::truthAnchor(dataset.groundTruth());
   }
   return config;
 }
@@ -90,58 +75,49 @@ OdometryRun replay(const OdometryOptions& o, const euroc::EurocDataset& dataset)
   OdometryRun run;
   run.session_dir = o.session_dir;
   run.reader = dataset.stats();
-  const std::size_t frames = o.frames > 0 ? std::min<std::size_t>(o.frames, dataset.frames().size())
-                                          : dataset.frames().size();
   run.frames_in_dataset = dataset.frames().size();
-  odometry::VioPipeline pipeline(dataset.calibration(), pipelineConfig(o, dataset));
-  run.stereo = pipeline.stereo();
+  odometry::ReplayInput input;
+  input.imu = &dataset.imu();
+  for (const euroc::StereoFrame& f : dataset.frames())
+    input.frame_timestamps_ns.push_back(f.timestamp_ns);
+  input.load = [&](std::size_t k) { return dataset.loadImages(k); };
+  input.max_frames = o.frames > 0 ? static_cast<std::size_t>(o.frames) : 0;
+  const std::size_t frames = input.max_frames > 0
+                                 ? std::min(input.max_frames, run.frames_in_dataset)
+                                 : run.frames_in_dataset;
   ProgressBar progress("odometry", frames, !o.quiet);
   std::string frames_csv =
       "timestamp_s,status,segment,features,stereo_matched,frontend_lost,landmarks,speed_mps,"
       "frontend_ms,backend_ms,reason\n";
-  const auto collect = [&](std::vector<odometry::PipelineFrame> done) {
-    for (auto& f : done) {
-      if (!o.frames_csv_path.empty()) frames_csv += frameCsvRow(f);
-      if (f.status == odometry::VioStatus::kTracking)
-        run.tracked.push_back(std::move(f));
-      else if (f.status == odometry::VioStatus::kFailed && !o.quiet) {
-        std::fprintf(stderr, "\nstrata odometry: tracking lost at %.3f s: %s (re-initialising)\n",
-                     1e-9 * static_cast<double>(f.timestamp_ns), f.reason.c_str());
-      }
+  input.on_processed = [&](const odometry::PipelineFrame& f) {
+    if (!o.frames_csv_path.empty()) frames_csv += frameCsvRow(f);
+    if (f.status == odometry::VioStatus::kFailed && !o.quiet) {
+      std::fprintf(stderr, "\nstrata odometry: tracking lost at %.3f s: %s (re-initialising)\n",
+                   1e-9 * static_cast<double>(f.timestamp_ns), f.reason.c_str());
     }
   };
-  const Clock::time_point start = Clock::now();
-  const double cpu_start = processCpuSeconds();
-  std::size_t frames_pushed = 0;
-  for (const euroc::Event& e : dataset.events()) {
-    if (e.kind == euroc::Event::Kind::kImu) {
-      collect(pipeline.pushImu(dataset.imu()[e.index]));
-      continue;
-    }
-    if (frames_pushed == frames) break;
-    const Clock::time_point load = Clock::now();
-    const euroc::StereoImages images = dataset.loadImages(e.index);
-    run.image_load_s += secondsSince(load);
-    collect(pipeline.pushFrame(dataset.frames()[e.index].timestamp_ns, wrap(images.left),
-                               wrap(images.right)));
-    ++frames_pushed;
-    const auto& s = pipeline.stats();
+  input.on_pushed = [&](std::size_t pushed, const odometry::PipelineStats& s) {
     char detail[96];
     std::snprintf(
         detail, sizeof(detail), "%zu tracked, %zu failures, %.1f ms/frame", s.frames_tracking,
         s.failures,
         (s.frontend_ms_total + s.backend_ms_total) / std::max<std::size_t>(1, s.frames_processed));
-    progress.update(frames_pushed, detail);
-  }
-  pipeline.flush();
+    progress.update(pushed, detail);
+  };
+  odometry::VioPipeline pipeline(dataset.calibration(), pipelineConfig(o, dataset));
+  const double cpu_start = processCpuSeconds();
+  odometry::ReplayResult result = odometry::replayVio(pipeline, input);
+  run.cpu_s = processCpuSeconds() - cpu_start;
   progress.finish();
   if (!o.frames_csv_path.empty()) {
     writeFileAtomically(o.frames_csv_path,
                         std::vector<std::uint8_t>(frames_csv.begin(), frames_csv.end()));
   }
-  run.wall_s = secondsSince(start);
-  run.cpu_s = processCpuSeconds() - cpu_start;
-  run.stats = pipeline.stats();
+  run.stereo = result.stereo;
+  run.wall_s = result.wall_s;
+  run.image_load_s = result.image_load_s;
+  run.stats = std::move(result.stats);
+  run.tracked = std::move(result.tracked);
   return run;
 }
 

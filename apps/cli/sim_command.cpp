@@ -53,16 +53,13 @@ std::size_t writeSession(const sim::SimSessionDataset& session, const fs::path& 
 }
 
 sim::StereoRecordingConfig stereoConfig(const SimOptions& o) {
-  sim::StereoRecordingConfig config;
+  sim::StereoRecordingConfig config =
+      stereoRecordingConfig(o.stereo_width_px, o.stereo_height_px, !o.no_noise);
   config.stereo = !o.mono;
   config.duration_s = o.stereo_duration_s;
-  config.width_px = o.stereo_width_px;
-  config.height_px = o.stereo_height_px;
-  config.exposure_gain_sigma = o.no_noise ? 0.0 : o.exposure_gain_sigma;
-  config.exposure_offset_sigma = o.no_noise ? 0.0 : o.exposure_offset_sigma;
-  if (o.no_noise) {
-    config.pixel_noise_sigma = 0.0;
-    config.imu.noise = false;
+  if (!o.no_noise) {
+    config.exposure_gain_sigma = o.exposure_gain_sigma;
+    config.exposure_offset_sigma = o.exposure_offset_sigma;
   }
   return config;
 }

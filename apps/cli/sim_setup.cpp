@@ -22,4 +22,17 @@ sim::SimSessionConfig sessionConfig(double rate_hz, int max_frames, bool noise, 
   return config;
 }
 
+sim::StereoRecordingConfig stereoRecordingConfig(int width_px, int height_px, bool noise) {
+  sim::StereoRecordingConfig config;
+  config.width_px = width_px;
+  config.height_px = height_px;
+  if (!noise) {
+    config.pixel_noise_sigma = 0.0;
+    config.exposure_gain_sigma = 0.0;
+    config.exposure_offset_sigma = 0.0;
+    config.imu.noise = false;
+  }
+  return config;
+}
+
 }  // namespace strata::apps

@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "core/file_limits.h"
+#include "core/pose_interpolation.h"
 #include "io/euroc_parse.h"
 #include "io/image_header.h"
 #include "io/image_io.h"
@@ -233,23 +234,9 @@ std::vector<Event> EurocDataset::events() const {
 std::optional<Eigen::Isometry3d> interpolateGroundTruth(const std::vector<GroundTruthState>& truth,
                                                         std::int64_t timestamp_ns,
                                                         std::int64_t max_gap_ns) {
-  const auto after = std::lower_bound(
-      truth.begin(), truth.end(), timestamp_ns,
-      [](const GroundTruthState& s, std::int64_t t) { return s.timestamp_ns < t; });
-  if (after == truth.end()) return std::nullopt;
-  if (after->timestamp_ns == timestamp_ns) return after->T_W_B;
-  if (after == truth.begin()) return std::nullopt;
-  const GroundTruthState& a = *(after - 1);
-  const GroundTruthState& b = *after;
-  if (b.timestamp_ns - a.timestamp_ns > max_gap_ns) return std::nullopt;
-  const double s = static_cast<double>(timestamp_ns - a.timestamp_ns) /
-                   static_cast<double>(b.timestamp_ns - a.timestamp_ns);
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = Eigen::Quaterniond(a.T_W_B.linear())
-                   .slerp(s, Eigen::Quaterniond(b.T_W_B.linear()))
-                   .toRotationMatrix();
-  T.translation() = (1.0 - s) * a.T_W_B.translation() + s * b.T_W_B.translation();
-  return T;
+  return interpolateStamped(
+      truth, timestamp_ns, max_gap_ns, [](const GroundTruthState& s) { return s.timestamp_ns; },
+      [](const GroundTruthState& s) { return s.T_W_B; });
 }
 
 GreyImage loadGreyImage(const std::string& path, const CameraCalibration& camera) {

@@ -56,7 +56,10 @@ SimSessionDataset::SimSessionDataset(std::shared_ptr<const World> world, int ses
   lighting_ = lightingOf(truth);
   recorded_frames_ = trajectory_->sampleTimes(config_.frame_rate_hz).size();
   times_s_ = frameTimes(*trajectory_, config_);
-  for (double t : times_s_) true_T_W_C_.push_back(trajectory_->pose(t));
+  for (std::size_t i = 0; i < times_s_.size(); ++i) {
+    true_T_W_C_.push_back(trajectory_->pose(times_s_[i]));
+    frame_number_.push_back(i);
+  }
   given_T_W_C_ = config_.drift ? addOdometryDrift(true_T_W_C_, config_.drift_config, seed_)
                                : true_T_W_C_;
 }
@@ -72,13 +75,37 @@ SimulatedFrame SimSessionDataset::render(std::size_t index) const {
     throw InputError(name() + ": frame " + std::to_string(index) + " out of range (" +
                      std::to_string(times_s_.size()) + " frames)");
   }
-  return camera_->render(*scene_, true_T_W_C_[index], lighting_, hashCombine(seed_, index));
+  return camera_->render(*scene_, true_T_W_C_[index], lighting_,
+                         hashCombine(seed_, frame_number_[index]));
+}
+
+void SimSessionDataset::replaceGivenPoses(
+    const std::vector<std::optional<Eigen::Isometry3d>>& T_W_C) {
+  if (T_W_C.size() != times_s_.size()) {
+    throw InputError(name() + ": " + std::to_string(T_W_C.size()) + " poses given for " +
+                     std::to_string(times_s_.size()) + " frames");
+  }
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < T_W_C.size(); ++i) {
+    if (!T_W_C[i]) continue;
+    times_s_[kept] = times_s_[i];
+    frame_number_[kept] = frame_number_[i];
+    true_T_W_C_[kept] = true_T_W_C_[i];
+    given_T_W_C_[kept] = *T_W_C[i];
+    ++kept;
+  }
+  times_s_.resize(kept);
+  frame_number_.resize(kept);
+  true_T_W_C_.resize(kept);
+  given_T_W_C_.resize(kept);
 }
 
 RgbdFrame SimSessionDataset::load(std::size_t index) const {
+  SimulatedFrame frame = render(index);  // throws for an index out of range
   char frame_name[64];
-  std::snprintf(frame_name, sizeof(frame_name), "session %d frame %zu", session_, index);
-  return makeRgbdFrame(render(index), given_T_W_C_[index], times_s_[index], frame_name);
+  std::snprintf(frame_name, sizeof(frame_name), "session %d frame %zu", session_,
+                frame_number_[index]);
+  return makeRgbdFrame(std::move(frame), given_T_W_C_[index], times_s_[index], frame_name);
 }
 
 std::vector<ImuSample> SimSessionDataset::imu(const ImuConfig& config) const {

@@ -1,8 +1,9 @@
 #pragma once
 // One simulated mapping session as a Dataset: frames rendered on demand in memory (no disk), the
-// exact poses kept beside the (optionally drifted) poses given to the mapper.
+// exact poses kept beside the poses given to the mapper (optionally drifted, or an odometry's).
 // Thread safety: load()/render() may be called from several threads at once.
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "io/dataset.h"
@@ -55,6 +56,11 @@ class SimSessionDataset : public Dataset {
   double timestamp(std::size_t index) const { return times_s_.at(index); }
   const std::vector<Eigen::Isometry3d>& truePoses() const { return true_T_W_C_; }
   const std::vector<Eigen::Isometry3d>& givenPoses() const { return given_T_W_C_; }
+  /// Replaces the poses given to the mapper by others (e.g. an odometry's), one per frame; a frame
+  /// given none (nullopt) is dropped: size(), timestamp(), truePoses() and givenPoses() then hold
+  /// the kept frames only, and each kept frame renders as before (same noise). Call before the
+  /// frames are used (not thread safe). Throws InputError when the count is not size().
+  void replaceGivenPoses(const std::vector<std::optional<Eigen::Isometry3d>>& T_W_C);
   /// The session's lighting and seed (what its sensors render and draw with).
   const Lighting& lighting() const { return lighting_; }
   std::uint64_t seed() const { return seed_; }
@@ -71,6 +77,8 @@ class SimSessionDataset : public Dataset {
   std::unique_ptr<RgbdCamera> camera_;
   Lighting lighting_;
   std::vector<double> times_s_;
+  // Per frame: its index before replaceGivenPoses (its noise seed and name).
+  std::vector<std::size_t> frame_number_;
   std::size_t recorded_frames_ = 0;
   std::vector<Eigen::Isometry3d> true_T_W_C_;
   std::vector<Eigen::Isometry3d> given_T_W_C_;

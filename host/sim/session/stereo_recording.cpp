@@ -6,7 +6,6 @@
 #include "core/error.h"
 #include "io/euroc_writer.h"
 #include "sim/rng.h"
-#include "sim/sensors/grey_camera.h"
 
 namespace strata::sim {
 namespace {
@@ -126,36 +125,52 @@ std::size_t stereoFrameCount(const SimSessionDataset& session,
   return cameraTimes(session, config).size();
 }
 
+StereoRecording::StereoRecording(const SimSessionDataset& session,
+                                 const StereoRecordingConfig& config)
+    : session_(session), config_(config) {
+  config_.validate();
+  calibration_ = stereoCalibration(config_);
+  camera_ = std::make_unique<GreyCamera>(greyConfig(config_));
+  frame_times_s_ = cameraTimes(session_, config_);
+  for (double t : frame_times_s_) frame_ns_.push_back(toNs(t, config_.imu.start_time_ns));
+  for (const ImuSample& s : session_.imu(config_.imu)) {
+    if (config_.duration_s > 0.0 && s.t_s > config_.duration_s + 1e-9) break;
+    imu_.push_back({s.timestamp_ns, s.gyro_rad_s, s.accel_mps2});
+    truth_.push_back(bodyState(session_.trajectory().state(s.t_s), s, config_.imu.T_C_B));
+  }
+}
+
+StereoRecording::~StereoRecording() = default;
+
+GreyFrame StereoRecording::renderFrame(std::size_t k) const {
+  const std::uint64_t seed = hashCombine(session_.seed(), kStereoStream);
+  return camera_->render(session_.scene(), session_.trajectory().pose(frame_times_s_.at(k)),
+                         session_.lighting(), hashCombine(seed, k));
+}
+
+double StereoRecording::duration_s() const {
+  return frame_times_s_.empty() ? 0.0 : frame_times_s_.back() - frame_times_s_.front();
+}
+
 StereoRecordingSummary writeStereoRecording(const SimSessionDataset& session,
                                             const StereoRecordingConfig& config,
                                             const std::string& folder,
                                             const std::function<void()>& on_frame) {
-  config.validate();
-  const GreyCamera camera(greyConfig(config));
-  euroc::EurocWriter writer(folder, stereoCalibration(config));
-  const std::vector<double> times = cameraTimes(session, config);
-  const std::uint64_t seed = hashCombine(session.seed(), kStereoStream);
-  for (std::size_t k = 0; k < times.size(); ++k) {
-    const GreyFrame frame = camera.render(session.scene(), session.trajectory().pose(times[k]),
-                                          session.lighting(), hashCombine(seed, k));
-    writer.addFrame(toNs(times[k], config.imu.start_time_ns), frame.eyes[0],
-                    config.stereo ? frame.eyes[1] : GreyImage());
+  const StereoRecording recording(session, config);
+  euroc::EurocWriter writer(folder, recording.calibration());
+  const std::vector<std::int64_t>& frame_ns = recording.frameTimestamps();
+  for (std::size_t k = 0; k < frame_ns.size(); ++k) {
+    const GreyFrame frame = recording.renderFrame(k);
+    writer.addFrame(frame_ns[k], frame.eyes[0], config.stereo ? frame.eyes[1] : GreyImage());
     if (on_frame) on_frame();
   }
-  std::vector<euroc::ImuSample> imu;
-  std::vector<euroc::GroundTruthState> truth;
-  for (const ImuSample& s : session.imu(config.imu)) {
-    if (config.duration_s > 0.0 && s.t_s > config.duration_s + 1e-9) break;
-    imu.push_back({s.timestamp_ns, s.gyro_rad_s, s.accel_mps2});
-    truth.push_back(bodyState(session.trajectory().state(s.t_s), s, config.imu.T_C_B));
-  }
-  writer.finish(imu, truth);
+  writer.finish(recording.imu(), recording.groundTruth());
   euroc::writeGroundTruthTum((std::filesystem::path(folder) / "groundtruth_body.txt").string(),
-                             truth);
+                             recording.groundTruth());
   StereoRecordingSummary summary;
-  summary.frames = times.size();
-  summary.imu_samples = imu.size();
-  summary.duration_s = times.empty() ? 0.0 : times.back() - times.front();
+  summary.frames = frame_ns.size();
+  summary.imu_samples = recording.imu().size();
+  summary.duration_s = recording.duration_s();
   return summary;
 }
 

@@ -13,9 +13,11 @@
 #include <Eigen/Geometry>
 #include <cstddef>
 #include <functional>
+#include <memory>
 #include <string>
 
 #include "io/euroc_types.h"
+#include "sim/sensors/grey_camera.h"
 #include "sim/sensors/imu.h"
 #include "sim/session/sim_session.h"
 
@@ -59,16 +61,48 @@ struct StereoRecordingSummary {
   double duration_s = 0.0;
 };
 
+/// A session's grey camera + IMU in memory, what writeStereoRecording writes: the calibration,
+/// the IMU samples and body truth (computed at construction), and the frames rendered on demand.
+/// Borrows the session, which must outlive it. Thread safety: const methods may be called from
+/// several threads at once.
+class StereoRecording {
+ public:
+  /// Throws InputError for a bad config.
+  StereoRecording(const SimSessionDataset& session, const StereoRecordingConfig& config);
+  ~StereoRecording();
+
+  const euroc::Calibration& calibration() const { return calibration_; }
+  /// Frame timestamps, ns, increasing.
+  const std::vector<std::int64_t>& frameTimestamps() const { return frame_ns_; }
+  /// Renders frame k: [left] or [left, right] in eyes. Same seed (the session's), same bytes.
+  GreyFrame renderFrame(std::size_t k) const;
+  /// The IMU samples (IMU frame = body) and the body's true states at each of them.
+  const std::vector<euroc::ImuSample>& imu() const { return imu_; }
+  const std::vector<euroc::GroundTruthState>& groundTruth() const { return truth_; }
+  /// First to last frame time, seconds.
+  double duration_s() const;
+
+ private:
+  const SimSessionDataset& session_;
+  StereoRecordingConfig config_;
+  euroc::Calibration calibration_;
+  std::unique_ptr<GreyCamera> camera_;
+  std::vector<double> frame_times_s_;
+  std::vector<std::int64_t> frame_ns_;
+  std::vector<euroc::ImuSample> imu_;
+  std::vector<euroc::GroundTruthState> truth_;
+};
+
 /// Renders and writes <folder>/mav0/{cam0, cam1, imu0, state_groundtruth_estimate0} and the body
-/// truth again as a TUM trajectory, <folder>/groundtruth_body.txt (for TUM tools). Same seed
-/// (the session's), same bytes. `on_frame` (optional) is called after each written frame.
+/// truth again as a TUM trajectory, <folder>/groundtruth_body.txt (for TUM tools): a
+/// StereoRecording on disk. `on_frame` (optional) is called after each written frame.
 /// Throws InputError for a bad config, Error when a file cannot be written.
 StereoRecordingSummary writeStereoRecording(const SimSessionDataset& session,
                                             const StereoRecordingConfig& config,
                                             const std::string& folder,
                                             const std::function<void()>& on_frame = {});
 
-/// Frames writeStereoRecording will write (for progress bars).
+/// Frames writeStereoRecording will write (for progress bars) and a StereoRecording holds.
 std::size_t stereoFrameCount(const SimSessionDataset& session, const StereoRecordingConfig& config);
 
 }  // namespace strata::sim
