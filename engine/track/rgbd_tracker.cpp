@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "track/depth_filter.h"
 #include "track/gauss_newton.h"
 #include "track/live_pyramid.h"
 
@@ -60,8 +61,10 @@ TrackResult RgbdTracker::track(DeviceTsdfMap& map, int tsdf_layer, const RgbdFra
     return result;
   };
 
+  const DepthImage smoothed = bilateralFilterDepth(
+      frame.depth, map.config(), config_.smoothing_sigma_px, config_.smoothing_depth_share);
   const std::vector<LiveLevel> pyramid = buildLivePyramid(
-      frame.depth, intrinsics, map.config(), config_.levels, config_.pyramid_depth_threshold_m);
+      smoothed, intrinsics, map.config(), config_.levels, config_.pyramid_depth_threshold_m);
   if (pyramid[0].valid < config_.min_inliers) {
     return finish(lostEarly(T_W_C_guess, "too little valid depth"));
   }

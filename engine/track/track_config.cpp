@@ -19,6 +19,9 @@ void TrackConfig::validate() const {
           "iterations must hold one count per level (" + std::to_string(levels) + ")");
   require(model_level >= 0 && model_level < levels, "model_level must be in [0, levels)");
   for (int n : iterations) require(n >= 1 && n <= 100, "iterations must be in [1, 100]");
+  require(smoothing_sigma_px >= 0.0f && smoothing_sigma_px <= 8.0f,
+          "smoothing_sigma_px must be in [0, 8]");
+  require(smoothing_depth_share > 0.0f, "smoothing_depth_share must be > 0");
   require(pyramid_depth_threshold_m > 0.0f, "pyramid_depth_threshold_m must be > 0");
   require(max_distance_m > 0.0f, "max_distance_m must be > 0");
   require(max_normal_angle_deg > 0.0f && max_normal_angle_deg < 90.0f,

@@ -17,6 +17,12 @@ struct TrackConfig {
   /// The model is raycast at the resolution of this pyramid level (0: the frame's; 1: half, a
   /// quarter of the rays). The raycast is the costliest step; every live level associates with it.
   int model_level = 1;
+  /// The live depth is smoothed before the pyramid (bilateral filter, depth_filter.h): normals of
+  /// raw depth are noise where the depth noise nears a pixel's footprint, and the normal gate then
+  /// drops true matches. Spatial sigma in pixels (window ceil(2 sigma); 0: no smoothing) and range
+  /// sigma as a share of the pixel's depth (larger steps are edges and stay sharp).
+  float smoothing_sigma_px = 2.0f;
+  float smoothing_depth_share = 0.02f;
   /// Pyramid: a coarse depth is the mean of the valid depths of its 2x2 block within this of the
   /// nearest one (mixing foreground and background would invent surfaces).
   float pyramid_depth_threshold_m = 0.05f;
