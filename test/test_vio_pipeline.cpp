@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -16,6 +17,7 @@
 #include "io/euroc_dataset.h"
 #include "io/tum_format.h"
 #include "odometry/pipeline/vio_pipeline.h"
+#include "odometry/pipeline/vio_replay.h"
 #include "test_utils.h"
 
 namespace strata::odometry {
@@ -23,40 +25,27 @@ namespace {
 
 namespace fs = std::filesystem;
 
-cv::Mat wrap(const GreyImage& image) {
-  if (image.empty()) return {};
-  return cv::Mat(image.height_px, image.width_px, CV_8UC1,
-                 const_cast<std::uint8_t*>(image.pixels.data()));
-}
-
 struct Replay {
   std::vector<PipelineFrame> tracked;
   PipelineStats stats;
 };
 
-// Every event of the session through the pipeline; `edit` may change a frame's images.
+// The whole session through the pipeline (odometry::replayVio, as `strata odometry` does);
+// `edit` may change a frame's images before they are pushed.
 Replay replay(const euroc::EurocDataset& d, VioPipelineConfig config,
-              const std::function<void(std::int64_t, cv::Mat&, cv::Mat&)>& edit = {}) {
+              const std::function<void(std::int64_t, euroc::StereoImages&)>& edit = {}) {
   VioPipeline pipeline(d.calibration(), std::move(config));
-  Replay r;
-  const auto keep = [&](const std::vector<PipelineFrame>& frames) {
-    for (const auto& f : frames) {
-      if (f.status == VioStatus::kTracking) r.tracked.push_back(f);
-    }
+  ReplayInput input;
+  input.imu = &d.imu();
+  for (const euroc::StereoFrame& f : d.frames())
+    input.frame_timestamps_ns.push_back(f.timestamp_ns);
+  input.load = [&](std::size_t k) {
+    euroc::StereoImages images = d.loadImages(k);
+    if (edit) edit(d.frames()[k].timestamp_ns, images);
+    return images;
   };
-  for (const euroc::Event& e : d.events()) {
-    if (e.kind == euroc::Event::Kind::kImu) {
-      keep(pipeline.pushImu(d.imu()[e.index]));
-      continue;
-    }
-    const euroc::StereoImages images = d.loadImages(e.index);
-    cv::Mat left = wrap(images.left).clone(), right = wrap(images.right).clone();
-    if (edit) edit(d.frames()[e.index].timestamp_ns, left, right);
-    keep(pipeline.pushFrame(d.frames()[e.index].timestamp_ns, left, right));
-  }
-  pipeline.flush();
-  r.stats = pipeline.stats();
-  return r;
+  ReplayResult result = replayVio(pipeline, input);
+  return {std::move(result.tracked), std::move(result.stats)};
 }
 
 class VioPipelineSim : public testing::Test {
@@ -117,10 +106,10 @@ TEST_F(VioPipelineSim, BlackoutIsReportedAndTrackingResumesInTheSameWorldFrame) 
   const auto d = euroc::EurocDataset::open(session());
   const std::int64_t from_ns = 5'000'000'000, to_ns = 6'500'000'000;
   VioPipelineConfig config;
-  const Replay r = replay(d, config, [&](std::int64_t t, cv::Mat& left, cv::Mat& right) {
+  const Replay r = replay(d, config, [&](std::int64_t t, euroc::StereoImages& images) {
     if (t >= from_ns && t < to_ns) {
-      left.setTo(0);
-      right.setTo(0);
+      std::fill(images.left.pixels.begin(), images.left.pixels.end(), 0);
+      std::fill(images.right.pixels.begin(), images.right.pixels.end(), 0);
     }
   });
   ASSERT_GE(r.stats.failures, 1u);
@@ -147,13 +136,13 @@ TEST_F(VioPipelineSim, BadSamplesAreCountedAndSkippedAndBadImagesRefused) {
   const std::int64_t t0 = d.frames()[0].timestamp_ns;
   cv::Mat small(120, 188, CV_8UC1, cv::Scalar(0));
   try {
-    pipeline.pushFrame(t0, small, wrap(images.right));
+    pipeline.pushFrame(t0, small, cv::Mat(240, 376, CV_8UC1, cv::Scalar(0)));
     FAIL() << "a wrong-size image was accepted";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("188x120"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("376x240"), std::string::npos) << e.what();
   }
-  EXPECT_THROW(pipeline.pushFrame(t0, wrap(images.left), cv::Mat()), InputError);  // no right eye
+  EXPECT_THROW(pipeline.pushFrame(t0, images.left, GreyImage()), InputError);  // no right eye
   EXPECT_EQ(pipeline.stats().frames_in, 0u);  // refused frames change nothing
 
   euroc::ImuSample nan = d.imu()[0];
@@ -167,8 +156,8 @@ TEST_F(VioPipelineSim, BadSamplesAreCountedAndSkippedAndBadImagesRefused) {
 
   // A frame after the last IMU sample waits; one before it is processed at once.
   const std::int64_t later = d.imu()[1].timestamp_ns + 20'000'000;
-  EXPECT_TRUE(pipeline.pushFrame(later, wrap(images.left), wrap(images.right)).empty());
-  EXPECT_TRUE(pipeline.pushFrame(later - 1, wrap(images.left), wrap(images.right)).empty());
+  EXPECT_TRUE(pipeline.pushFrame(later, images.left, images.right).empty());
+  EXPECT_TRUE(pipeline.pushFrame(later - 1, images.left, images.right).empty());
   EXPECT_EQ(pipeline.stats().frames_out_of_order_skipped, 1u);
   pipeline.flush();
   EXPECT_EQ(pipeline.stats().frames_without_imu_skipped, 1u);

@@ -10,8 +10,6 @@
 namespace strata::apps {
 namespace {
 
-std::string number(double v) { return jsonNumber(v); }
-
 std::vector<traj::StampedPose> trackedPoses(const std::vector<odometry::PipelineFrame>& tracked) {
   std::vector<traj::StampedPose> poses;
   for (const auto& f : tracked)
@@ -87,12 +85,12 @@ std::string odometrySummaryJson(const OdometryRun& run) {
     << ", \"reanchored_dead_reckoned\": " << st.reanchored_dead_reckoned
     << ", \"reanchored_position_held\": " << st.reanchored_position_held
     << ", \"first_tracked_s\": "
-    << (st.first_tracking_ns >= 0 ? number(1e-9 * static_cast<double>(st.first_tracking_ns))
+    << (st.first_tracking_ns >= 0 ? jsonNumber(1e-9 * static_cast<double>(st.first_tracking_ns))
                                   : std::string("null"))
     << ", \"failure_log\": [";
   for (std::size_t i = 0; i < st.failure_log.size(); ++i) {
     s << (i ? ", " : "")
-      << "{\"t_s\": " << number(1e-9 * static_cast<double>(st.failure_log[i].first))
+      << "{\"t_s\": " << jsonNumber(1e-9 * static_cast<double>(st.failure_log[i].first))
       << ", \"reason\": " << jsonQuoted(st.failure_log[i].second) << "}";
   }
   s << "], \"skipped\": {\"imu_nonfinite\": "
@@ -105,24 +103,25 @@ std::string odometrySummaryJson(const OdometryRun& run) {
     << ", \"frames_out_of_order\": " << st.frames_out_of_order_skipped
     << ", \"frames_without_imu\": " << st.frames_without_imu_skipped << "}";
   const double n = static_cast<double>(std::max<std::size_t>(1, st.frames_processed));
-  s << ", \"timing\": {\"wall_s\": " << number(run.wall_s)
-    << ", \"image_load_s\": " << number(run.image_load_s) << ", \"cpu_s\": " << number(run.cpu_s)
-    << ", \"frames_per_cpu_second\": "
-    << number(run.cpu_s > 0 ? static_cast<double>(st.frames_processed) / run.cpu_s : NAN)
-    << ", \"frontend_ms_per_frame\": " << number(st.frontend_ms_total / n)
-    << ", \"backend_ms_per_frame\": " << number(st.backend_ms_total / n)
+  s << ", \"timing\": {\"wall_s\": " << jsonNumber(run.wall_s)
+    << ", \"image_load_s\": " << jsonNumber(run.image_load_s)
+    << ", \"cpu_s\": " << jsonNumber(run.cpu_s) << ", \"frames_per_cpu_second\": "
+    << jsonNumber(run.cpu_s > 0 ? static_cast<double>(st.frames_processed) / run.cpu_s : NAN)
+    << ", \"frontend_ms_per_frame\": " << jsonNumber(st.frontend_ms_total / n)
+    << ", \"backend_ms_per_frame\": " << jsonNumber(st.backend_ms_total / n)
     << ", \"frames_per_second\": "
-    << number(processing_s > 0 ? static_cast<double>(st.frames_processed) / processing_s : NAN)
+    << jsonNumber(processing_s > 0 ? static_cast<double>(st.frames_processed) / processing_s : NAN)
     << ", \"frames_per_second_with_decoding\": "
-    << number(run.wall_s > 0 ? static_cast<double>(st.frames_processed) / run.wall_s : NAN) << "}";
+    << jsonNumber(run.wall_s > 0 ? static_cast<double>(st.frames_processed) / run.wall_s : NAN)
+    << "}";
   s << ", \"accuracy\": ";
   if (!run.accuracy) {
     s << "null";
   } else {
     const OdometryAccuracy& a = *run.accuracy;
-    s << "{\"gravity_error_first_deg\": " << number(a.gravity_error_first_deg)
-      << ", \"gravity_error_max_deg\": " << number(a.gravity_error_max_deg)
-      << ", \"drift_m\": " << (a.first ? number(a.first->ate_max_m) : std::string("null"));
+    s << "{\"gravity_error_first_deg\": " << jsonNumber(a.gravity_error_first_deg)
+      << ", \"gravity_error_max_deg\": " << jsonNumber(a.gravity_error_max_deg)
+      << ", \"drift_m\": " << (a.first ? jsonNumber(a.first->ate_max_m) : std::string("null"));
     appendError(s, "se3", a.se3);
     appendError(s, "sim3", a.sim3);
     appendError(s, "first_pose", a.first);

@@ -1,6 +1,5 @@
 #include "vio_node/vio_core.h"
 
-#include <opencv2/core.hpp>
 #include <utility>
 
 namespace strata::apps {
@@ -8,20 +7,13 @@ namespace {
 
 constexpr std::int64_t kNsPerUs = 1000;
 
-/// A view of the image's pixels (the pipeline clones what it keeps).
-cv::Mat wrap(const GreyImage& image) {
-  if (image.empty()) return {};
-  return cv::Mat(image.height_px, image.width_px, CV_8UC1,
-                 const_cast<std::uint8_t*>(image.pixels.data()));
-}
-
 }  // namespace
 
 VioCore::VioCore(const euroc::Calibration& calibration, odometry::VioPipelineConfig config)
     : pipeline_(calibration, std::move(config)) {}
 
 std::vector<VioPose> VioCore::onFrame(const lcm_io::StereoFrameMsg& frame) {
-  return collect(pipeline_.pushFrame(frame.utime * kNsPerUs, wrap(frame.left), wrap(frame.right)));
+  return collect(pipeline_.pushFrame(frame.utime * kNsPerUs, frame.left, frame.right));
 }
 
 std::vector<VioPose> VioCore::onImu(const lcm_io::ImuMsg& sample) {

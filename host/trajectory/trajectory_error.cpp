@@ -25,13 +25,14 @@ Matches associate(const std::vector<StampedPose>& estimate, const std::vector<St
   Matches m;
   for (std::size_t i = 0; i < estimate.size(); ++i) {
     if (!finitePose(estimate[i].T_W_C)) {
-      throw InputError("estimated pose " + std::to_string(i) + " (t = " +
-                       std::to_string(estimate[i].timestamp_s) + " s) is not finite");
+      throw InputError("estimated pose " + std::to_string(i) +
+                       " (t = " + std::to_string(estimate[i].timestamp_s) + " s) is not finite");
     }
     const auto k = tum::nearestWithin(truth_s, estimate[i].timestamp_s, max_time_difference_s);
     if (!k) continue;
     if (!finitePose(truth[*k].T_W_C)) {
-      throw InputError("true pose at t = " + std::to_string(truth[*k].timestamp_s) + " s is not finite");
+      throw InputError("true pose at t = " + std::to_string(truth[*k].timestamp_s) +
+                       " s is not finite");
     }
     m.timestamps_s.push_back(estimate[i].timestamp_s);
     m.estimate.push_back(estimate[i].T_W_C);
@@ -53,7 +54,8 @@ void fillAte(const Matches& m, TrajectoryError* e) {
   for (std::size_t i = 0; i < m.estimate.size(); ++i) {
     const Eigen::Isometry3d T_gt_C = e->aligned.apply(m.estimate[i]);
     const double d = (T_gt_C.translation() - m.truth[i].translation()).norm();
-    const double angle = Eigen::AngleAxisd(m.truth[i].linear().transpose() * T_gt_C.linear()).angle();
+    const double angle =
+        Eigen::AngleAxisd(m.truth[i].linear().transpose() * T_gt_C.linear()).angle();
     e->estimate_positions_m.push_back(T_gt_C.translation());
     e->truth_positions_m.push_back(m.truth[i].translation());
     e->position_errors_m.push_back(d);
@@ -68,8 +70,6 @@ void fillAte(const Matches& m, TrajectoryError* e) {
   e->ate_median_m = median(e->position_errors_m);
   e->rotation_rmse_deg = std::sqrt(rot_sq / n) * 180.0 / M_PI;
 }
-
-std::string number(double v) { return jsonNumber(v); }
 
 }  // namespace
 
@@ -114,16 +114,17 @@ std::string trajectoryErrorJson(const TrajectoryError& e) {
   std::ostringstream s;
   s << "{\"alignment\": " << jsonQuoted(alignmentName(e.alignment))
     << ", \"estimated\": " << e.estimated << ", \"matched\": " << e.matched
-    << ", \"duration_s\": " << number(e.duration_s)
-    << ", \"path_length_m\": " << number(e.path_length_m) << ", \"scale\": " << number(e.scale)
-    << ", \"ate_rmse_m\": " << number(e.ate_rmse_m) << ", \"ate_mean_m\": " << number(e.ate_mean_m)
-    << ", \"ate_median_m\": " << number(e.ate_median_m) << ", \"ate_max_m\": " << number(e.ate_max_m)
-    << ", \"ate_percent_of_path\": "
-    << number(e.path_length_m > 0.0 ? 100.0 * e.ate_rmse_m / e.path_length_m : NAN)
-    << ", \"rotation_rmse_deg\": " << number(e.rotation_rmse_deg)
-    << ", \"rpe_segment_m\": " << number(e.rpe_segment_m) << ", \"rpe_pairs\": " << e.rpe_pairs
-    << ", \"rpe_trans_percent\": " << number(e.rpe_trans_percent)
-    << ", \"rpe_rot_deg_per_m\": " << number(e.rpe_rot_deg_per_m) << "}";
+    << ", \"duration_s\": " << jsonNumber(e.duration_s)
+    << ", \"path_length_m\": " << jsonNumber(e.path_length_m)
+    << ", \"scale\": " << jsonNumber(e.scale) << ", \"ate_rmse_m\": " << jsonNumber(e.ate_rmse_m)
+    << ", \"ate_mean_m\": " << jsonNumber(e.ate_mean_m)
+    << ", \"ate_median_m\": " << jsonNumber(e.ate_median_m)
+    << ", \"ate_max_m\": " << jsonNumber(e.ate_max_m) << ", \"ate_percent_of_path\": "
+    << jsonNumber(e.path_length_m > 0.0 ? 100.0 * e.ate_rmse_m / e.path_length_m : NAN)
+    << ", \"rotation_rmse_deg\": " << jsonNumber(e.rotation_rmse_deg)
+    << ", \"rpe_segment_m\": " << jsonNumber(e.rpe_segment_m) << ", \"rpe_pairs\": " << e.rpe_pairs
+    << ", \"rpe_trans_percent\": " << jsonNumber(e.rpe_trans_percent)
+    << ", \"rpe_rot_deg_per_m\": " << jsonNumber(e.rpe_rot_deg_per_m) << "}";
   return s.str();
 }
 

@@ -1,5 +1,6 @@
 #include "odometry/pipeline/vio_pipeline.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -197,15 +198,30 @@ std::vector<PipelineFrame> VioPipeline::drain() {
   std::vector<PipelineFrame> out;
   while (!pending_.empty() && !imu_.empty() &&
          imu_.back().timestamp_ns >= pending_.front().timestamp_ns) {
+    // pushFrame queued it only after the previous one: no order check is left to do here.
     const Pending frame = std::move(pending_.front());
     pending_.pop_front();
-    if (last_frame_ns_ && frame.timestamp_ns <= *last_frame_ns_) {
-      ++stats_.frames_out_of_order_skipped;
-      continue;
-    }
     out.push_back(process(frame));
   }
   return out;
+}
+
+std::size_t VioPipeline::firstImuCovering(std::int64_t t_ns) const {
+  // The last sample at or before t (the history holds up to 10 s, a frame needs 50 ms of it).
+  const auto after = std::upper_bound(
+      imu_.begin(), imu_.end(), t_ns,
+      [](std::int64_t t, const euroc::ImuSample& sample) { return t < sample.timestamp_ns; });
+  return after == imu_.begin() ? 0 : static_cast<std::size_t>(after - imu_.begin()) - 1;
+}
+
+std::vector<PipelineFrame> VioPipeline::pushFrame(std::int64_t timestamp_ns, const GreyImage& left,
+                                                  const GreyImage& right) {
+  const auto view = [](const GreyImage& image) {
+    return image.empty() ? cv::Mat()
+                         : cv::Mat(image.height_px, image.width_px, CV_8UC1,
+                                   const_cast<std::uint8_t*>(image.pixels.data()));
+  };
+  return pushFrame(timestamp_ns, view(left), view(right));  // copied when queued
 }
 
 std::optional<Eigen::Matrix3d> VioPipeline::predictCameraRotation(std::int64_t from_ns,
@@ -213,7 +229,7 @@ std::optional<Eigen::Matrix3d> VioPipeline::predictCameraRotation(std::int64_t f
   if (imu_.empty() || imu_.front().timestamp_ns > from_ns) return std::nullopt;
   // R_Bkm1_Bk by integrating the bias-corrected rate over [from, to], sample-held.
   Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
-  for (std::size_t i = 0; i + 1 < imu_.size(); ++i) {
+  for (std::size_t i = firstImuCovering(from_ns); i + 1 < imu_.size(); ++i) {
     const std::int64_t a = std::max(imu_[i].timestamp_ns, from_ns);
     const std::int64_t b = std::min(imu_[i + 1].timestamp_ns, to_ns);
     if (b <= a) continue;
@@ -230,7 +246,7 @@ Eigen::Isometry3d VioPipeline::deadReckon(std::int64_t to_ns) const {
   Eigen::Vector3d p = s.T_W_B.translation();
   Eigen::Vector3d v = s.v_W_B;
   const Eigen::Vector3d g(0.0, 0.0, -config_.backend.gravity_mps2);
-  for (std::size_t i = 0; i + 1 < imu_.size(); ++i) {
+  for (std::size_t i = firstImuCovering(s.timestamp_ns); i + 1 < imu_.size(); ++i) {
     const std::int64_t a = std::max(imu_[i].timestamp_ns, s.timestamp_ns);
     const std::int64_t b = std::min(imu_[i + 1].timestamp_ns, to_ns);
     if (b <= a) continue;

@@ -38,6 +38,7 @@
 #include <string>
 #include <vector>
 
+#include "core/types.h"
 #include "io/euroc_types.h"
 #include "odometry/camera_rig.h"
 #include "odometry/frontend/camera.h"
@@ -128,6 +129,9 @@ class VioPipeline {
   /// InputError for a bad image, with nothing changed.
   std::vector<PipelineFrame> pushFrame(std::int64_t timestamp_ns, const cv::Mat& left,
                                        const cv::Mat& right = cv::Mat());
+  /// The same from core GreyImages (an empty right image for mono).
+  std::vector<PipelineFrame> pushFrame(std::int64_t timestamp_ns, const GreyImage& left,
+                                       const GreyImage& right);
   /// End of stream: frames still waiting for IMU are dropped (counted).
   void flush();
 
@@ -142,6 +146,7 @@ class VioPipeline {
     cv::Mat left, right;
   };
   std::vector<PipelineFrame> drain();
+  std::size_t firstImuCovering(std::int64_t t_ns) const;
   PipelineFrame process(const Pending& frame);
   std::optional<Eigen::Matrix3d> predictCameraRotation(std::int64_t from_ns, std::int64_t to_ns);
   Eigen::Isometry3d deadReckon(std::int64_t to_ns) const;

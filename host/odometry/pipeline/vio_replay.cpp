@@ -14,12 +14,6 @@ double secondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-cv::Mat wrap(const GreyImage& image) {
-  if (image.empty()) return {};
-  return cv::Mat(image.height_px, image.width_px, CV_8UC1,
-                 const_cast<std::uint8_t*>(image.pixels.data()));
-}
-
 }  // namespace
 
 ReplayResult replayVio(VioPipeline& pipeline, const ReplayInput& input) {
@@ -44,7 +38,7 @@ ReplayResult replayVio(VioPipeline& pipeline, const ReplayInput& input) {
     const Clock::time_point load = Clock::now();
     const euroc::StereoImages images = input.load(k);
     result.image_load_s += secondsSince(load);
-    collect(pipeline.pushFrame(t_ns, wrap(images.left), wrap(images.right)));
+    collect(pipeline.pushFrame(t_ns, images.left, images.right));
     if (input.on_pushed) input.on_pushed(k + 1, pipeline.stats());
   }
   // The samples after the last frame pushed (up to the next frame's time, when frames are left
