@@ -13,6 +13,7 @@ PACKAGES=(
   clang libclang-rt-14-dev llvm
   libceres-dev
   libsqlite3-dev
+  libhnswlib-dev
 )
 missing=()
 for p in "${PACKAGES[@]}"; do
