@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
+#include "cli/align_command.h"
 #include "cli/demo_command.h"
 #include "cli/diff_command.h"
 #include "cli/esdf_command.h"
@@ -34,7 +35,7 @@ int runDefault() {
   std::printf(
       "strata: no command given; running the multi-session demo on the shipped room "
       "(see `strata --help` for fuse, sim, demo, diff, mesh, esdf, select, eval-trajectory, map, "
-      "odometry, devices)\n");
+      "odometry, align, devices)\n");
   return strata::apps::runDemo(strata::apps::DemoOptions{});
 }
 
@@ -63,6 +64,8 @@ int main(int argc, char** argv) {
   CLI::App* map = strata::apps::addMapCommand(app, map_options);
   strata::apps::OdometryOptions odometry_options;
   CLI::App* odometry = strata::apps::addOdometryCommand(app, odometry_options);
+  strata::apps::AlignOptions align_options;
+  CLI::App* align = strata::apps::addAlignCommand(app, align_options);
   CLI::App* devices = app.add_subcommand("devices", "List the Vulkan devices");
   try {
     app.parse(argc, argv);
@@ -79,6 +82,7 @@ int main(int argc, char** argv) {
   if (eval_trajectory->parsed()) return strata::apps::runEvalTrajectory(eval_trajectory_options);
   if (map->parsed()) return strata::apps::runMap(map_options);
   if (odometry->parsed()) return strata::apps::runOdometry(odometry_options);
+  if (align->parsed()) return strata::apps::runAlign(align_options);
   if (devices->parsed()) return listDevices();
   return runDefault();
 }

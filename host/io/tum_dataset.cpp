@@ -100,6 +100,11 @@ class TumDataset : public Dataset {
   CameraIntrinsics intrinsics() const override { return model_.intrinsics; }
   std::string warnings() const override { return warnings_; }
 
+  FrameStamp stamp(std::size_t index) const override {
+    if (index >= entries_.size()) return Dataset::stamp(index);  // load() names the error
+    return {entries_[index].timestamp_s, entries_[index].T_W_C};
+  }
+
   RgbdFrame load(std::size_t index) const override {
     if (index >= entries_.size()) {
       throw InputError(name() + ": frame index " + std::to_string(index) + " out of range (" +

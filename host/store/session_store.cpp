@@ -208,4 +208,14 @@ void Store::setSessionAlignment(std::int64_t session_id, const Eigen::Isometry3d
   transaction.commit();
 }
 
+void Store::clearAlignment() {
+  Transaction transaction(*db_);
+  Statement(*db_, "UPDATE sessions SET (" + poseColumns("T_W_S") + ", aligned) = (" +
+                      "NULL, NULL, NULL, NULL, NULL, NULL, NULL, 0)").run();
+  Statement(*db_, "UPDATE keyframes SET (" + poseColumns("T_W_C") + ") = (" +
+                      "NULL, NULL, NULL, NULL, NULL, NULL, NULL)").run();
+  Statement(*db_, "DELETE FROM edges WHERE kind = 'loop'").run();
+  transaction.commit();
+}
+
 }  // namespace strata::store

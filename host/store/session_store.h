@@ -67,6 +67,10 @@ class Store {
   void setOptimisedPoses(const std::vector<std::pair<std::int64_t, Eigen::Isometry3d>>& T_W_C);
   /// Sets T_W_S and marks the session aligned; InputError for an unknown session.
   void setSessionAlignment(std::int64_t session_id, const Eigen::Isometry3d& T_W_S);
+  /// Forgets every alignment result: sessions unaligned (T_W_S NULL), optimised keyframe poses
+  /// NULL, loop edges deleted; odometry edges, priors, features and resources stay. One
+  /// transaction, so a new alignment replaces the old one whole.
+  void clearAlignment();
   /// Stores (replaces) a keyframe's features.
   void setFeatures(std::int64_t keyframe_id, const FeatureSet& features);
   std::optional<FeatureSet> features(std::int64_t keyframe_id);

@@ -108,6 +108,11 @@ RgbdFrame SimSessionDataset::load(std::size_t index) const {
   return makeRgbdFrame(std::move(frame), given_T_W_C_[index], times_s_[index], frame_name);
 }
 
+FrameStamp SimSessionDataset::stamp(std::size_t index) const {
+  if (index >= times_s_.size()) return Dataset::stamp(index);  // load() names the error
+  return {times_s_[index], given_T_W_C_[index]};
+}
+
 std::vector<ImuSample> SimSessionDataset::imu(const ImuConfig& config) const {
   return simulateImu(*trajectory_, config, hashCombine(seed_, 0x494d55ull));
 }

@@ -46,6 +46,8 @@ class SimSessionDataset : public Dataset {
   CameraIntrinsics intrinsics() const override { return config_.camera.intrinsics; }
   /// The sensor frame with the pose given to the mapper (drifted when configured).
   RgbdFrame load(std::size_t index) const override;
+  /// The given pose and time of a frame, without rendering it.
+  FrameStamp stamp(std::size_t index) const override;
   /// Everything the sensor saw, with ground truth (exact depth, object ids).
   SimulatedFrame render(std::size_t index) const;
 

@@ -1,0 +1,156 @@
+#include "cli/align_command.h"
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <optional>
+
+#include "cli/align_outputs.h"
+#include "cli/align_plot.h"
+#include "cli/progress.h"
+#include "core/error.h"
+#include "store/session_import.h"
+
+namespace strata::apps {
+namespace {
+
+namespace fs = std::filesystem;
+
+void importFolders(store::Store& db, const AlignOptions& o) {
+  store::ImportOptions options;
+  options.keyframe_every = o.keyframe_every;
+  options.keyframe_distance_m = o.keyframe_distance_m;
+  for (const std::string& dir : o.session_dirs) {
+    std::optional<ProgressBar> bar;
+    const auto progress = [&](std::size_t done, std::size_t total) {
+      if (!bar) bar.emplace("importing " + dir, total, !o.quiet);
+      bar->update(done);
+    };
+    const store::ImportResult r = store::importTumSession(db, dir, options, progress);
+    if (bar) bar->finish();
+    std::printf("%s: %s session %lld '%s' (%zu keyframes of %zu frames, odometry %s)\n",
+                dir.c_str(), r.skipped ? "already in the map as" : "imported as",
+                static_cast<long long>(r.session_id), r.name.c_str(), r.keyframes, r.frames,
+                r.odometry_file.c_str());
+  }
+}
+
+align::AlignConfig alignConfig(const AlignOptions& o) {
+  align::AlignConfig config;
+  config.candidates_per_keyframe = static_cast<std::size_t>(std::max(1, o.candidates));
+  config.min_intra_session_gap_s = o.intra_gap_s;
+  config.intra_session_loops = !o.no_intra;
+  config.threads = o.threads;
+  config.graph.threads = o.threads;
+  return config;
+}
+
+void printSummary(const align::StoreAlignment& a, const align::AlignmentScore* score) {
+  for (std::size_t s = 0; s < a.sessions.size(); ++s) {
+    const align::AlignedSession& r = a.result.sessions[s];
+    std::printf("session %zu '%s': %zu keyframes, %s\n", s, a.sessions[s].name.c_str(),
+                r.keyframes.size(),
+                r.aligned ? (s == 0 ? "anchor (world frame)" : "aligned")
+                          : "UNALIGNED (no verified loop joins it to the others)");
+  }
+  std::size_t accepted = 0;
+  for (const align::AlignLoop& l : a.result.loops) accepted += l.accepted ? 1 : 0;
+  std::printf("loops: %zu candidates verified, %zu passed verification, %zu kept by the graph\n",
+              a.result.candidates, a.result.loops.size(), accepted);
+  if (score) {
+    std::printf(
+        "truth: ATE %.1f mm after alignment (before: %.3f m, odometry in its own frames); loops "
+        "kept %zu true / %zu false (precision %.3f), keyframe recall %.3f\n",
+        1e3 * score->ate_after_rmse_m, score->ate_before_rmse_m, score->accepted_true,
+        score->accepted_false, score->loop_precision, score->loop_recall);
+  }
+}
+
+int run(const AlignOptions& o) {
+  const auto start = std::chrono::steady_clock::now();
+  if (o.session_dirs.empty() && o.db_path.empty())
+    throw InputError("give session folders (with --out) or --db map.sqlite");
+  if (!o.session_dirs.empty() && o.out_dir.empty())
+    throw InputError("--out DIR is needed with session folders");
+  const std::string out_dir =
+      !o.out_dir.empty() ? o.out_dir : fs::absolute(o.db_path).parent_path().string();
+  fs::create_directories(out_dir);
+  const std::string db_path =
+      !o.db_path.empty() ? o.db_path : (fs::path(out_dir) / "map.sqlite").string();
+  store::StoreOptions store_options;
+  store_options.create = !o.session_dirs.empty();
+  store::Store db(db_path, store_options);
+  if (!o.session_dirs.empty()) importFolders(db, o);
+
+  std::map<std::string, std::optional<ProgressBar>> bars;
+  const auto progress = [&](const std::string& stage, std::size_t done, std::size_t total) {
+    auto& bar = bars[stage];
+    if (!bar) bar.emplace(stage, total, !o.quiet);
+    bar->update(done);
+    if (done == total) bar->finish();
+  };
+  const align::AlignConfig config = alignConfig(o);
+  const align::StoreAlignment a = align::alignStore(db, config, progress);
+  std::optional<align::AlignmentScore> score;
+  if (!o.no_truth) {
+    if (const auto truth = loadAlignTruth(a)) score = align::scoreAlignment(a.result, *truth, config);
+  }
+  const align::AlignmentScore* score_ptr = score ? &*score : nullptr;
+  const fs::path out(out_dir);
+  for (const std::string& f : writeAlignedTrajectories(a, out_dir)) std::printf("Wrote %s\n", f.c_str());
+  writeLoopsCsv(a, score_ptr, (out / "loops.csv").string());
+  std::vector<std::string> names;
+  for (const store::SessionRecord& s : a.sessions) names.push_back(s.name);
+  writeAlignPlot((out / "trajectories.png").string(), a.result, names);
+  const double total_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  writeAlignReport(a, score_ptr, db.path(), total_s, (out / "report.json").string());
+  printSummary(a, score_ptr);
+  std::printf("Wrote %s/{loops.csv,report.json,trajectories.png}; the map database %s holds the "
+              "result\n", out_dir.c_str(), db.path().c_str());
+  return 0;
+}
+
+}  // namespace
+
+CLI::App* addAlignCommand(CLI::App& app, AlignOptions& o) {
+  CLI::App* cmd = app.add_subcommand(
+      "align", "Register sessions recorded in their own odometry frames into one map");
+  cmd->add_option("sessions", o.session_dirs,
+                  "Session folders (TUM layout; odometry.txt or groundtruth.txt); the first "
+                  "anchors the world frame");
+  cmd->add_option("--db", o.db_path, "Map database (default with folders: OUT/map.sqlite)");
+  cmd->add_option("--out", o.out_dir, "Output folder (default with --db: the database's)");
+  cmd->add_option("--keyframe-every", o.keyframe_every, "Import: a keyframe every N frames")
+      ->capture_default_str();
+  cmd->add_option("--keyframe-distance-m", o.keyframe_distance_m,
+                  "Import: or after this much motion, metres (0: off)")
+      ->capture_default_str();
+  cmd->add_option("--candidates", o.candidates, "Place candidates verified per keyframe")
+      ->capture_default_str()->check(CLI::PositiveNumber);
+  cmd->add_option("--intra-gap-s", o.intra_gap_s,
+                  "Loops within a session join keyframes at least this far apart, seconds")
+      ->capture_default_str();
+  cmd->add_flag("--no-intra", o.no_intra, "No loops within a session");
+  cmd->add_flag("--no-truth", o.no_truth, "Do not score against groundtruth.txt");
+  cmd->add_option("--threads", o.threads, "Worker threads")->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd->add_flag("--quiet", o.quiet, "No progress bars");
+  return cmd;
+}
+
+int runAlign(const AlignOptions& o) {
+  try {
+    return run(o);
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "strata align: input error: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "strata align: error: %s\n", e.what());
+    return 1;
+  }
+}
+
+}  // namespace strata::apps
