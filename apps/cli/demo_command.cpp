@@ -90,7 +90,8 @@ change::WorldEvaluation evaluate(const sim::World& world, const DiffResult& resu
 /// The world's sessions; with --vio on poses from the VIO (`vio` receives what each run measured).
 Sessions makeSessions(const std::shared_ptr<const sim::World>& world,
                       const sim::SimSessionConfig& config, const DemoOptions& o,
-                      std::vector<VioSessionResult>& vio) {
+                      std::vector<VioSessionResult>& vio,
+                      std::optional<DemoAlignResult>& alignment) {
   std::vector<std::shared_ptr<sim::SimSessionDataset>> simulated;
   std::size_t stereo_frames = 0;
   for (int s = 0; s < world->sessionCount(); ++s) {
@@ -104,6 +105,7 @@ Sessions makeSessions(const std::shared_ptr<const sim::World>& world,
       vio.push_back(useVioPoses(*session, o.vio, !o.no_noise, progress, done));
     progress.finish();
   }
+  if (o.align) alignment = useAlignedPoses(simulated, o.quiet);
   Sessions sessions;
   for (auto& session : simulated)
     sessions.push_back(std::make_unique<change::RecordingSession>(std::move(session)));
@@ -134,8 +136,9 @@ DemoReport runDemoPipeline(const DemoOptions& o) {
     check.validate();
   }
   if (o.vio.enabled) o.vio.validate();
+  if (o.vio.enabled && o.align) throw InputError("--align and --vio cannot be combined (yet)");
   const auto world = loadWorld(o.world, o.seed, o.sessions);
-  sim::SimSessionConfig config = sessionConfig(30.0, o.frames, !o.no_noise, false);
+  sim::SimSessionConfig config = sessionConfig(30.0, o.frames, !o.no_noise, o.align);
   config.trajectory.rest_at_start_s = o.restSeconds();
   const MapConfig map_config = changeMapConfig(o.voxel_size_m);  // min_weight counts frames
   DiffRunInfo info;
@@ -148,7 +151,8 @@ DemoReport runDemoPipeline(const DemoOptions& o) {
   const fs::path out(o.out_dir);
   fs::create_directories(out);
   std::vector<VioSessionResult> vio;
-  const Sessions sessions = makeSessions(world, config, o, vio);
+  std::optional<DemoAlignResult> alignment;
+  const Sessions sessions = makeSessions(world, config, o, vio, alignment);
   std::vector<TsdfMap> maps;
   const DiffResult result = detectChanges(*context, map_config, info, sessions, o.quiet, maps);
   const DiffFiles files = writeDiffFiles(result, o.out_dir);
@@ -166,6 +170,7 @@ DemoReport runDemoPipeline(const DemoOptions& o) {
     if (s < vio.size()) report.sessions.back().vio = vio[s];
   }
   report.evaluation = evaluate(*world, result, sessions, info.change);
+  report.alignment = alignment;
   if (o.incremental) {
     const IncrementalResult incremental =
         runIncremental(*context, *world, sessions, map_config, info, report.evaluation, o.out_dir,
@@ -194,6 +199,9 @@ CLI::App* addDemoCommand(CLI::App& app, DemoOptions& o) {
   demo->add_flag("--vio", o.vio.enabled,
                  "Fuse on poses from stereo visual-inertial odometry over each session's "
                  "simulated grey stereo + IMU (anchored at the true pose where tracking starts)");
+  demo->add_flag("--align", o.align,
+                 "Sessions drift in frames of their own; register them by multi-session "
+                 "alignment and fuse on the aligned poses");
   demo->add_option("--vio-width", o.vio.width_px, "With --vio: grey camera width, px")
       ->capture_default_str();
   demo->add_option("--vio-height", o.vio.height_px, "With --vio: grey camera height, px")

@@ -37,6 +37,9 @@ struct DemoOptions {
   IncrementalOptions select;
   /// Fuse every session on poses from visual-inertial odometry (cli/demo_vio.h).
   DemoVioOptions vio;
+  /// Sessions in drifting frames of their own, registered by multi-session alignment
+  /// (cli/demo_align.h) and fused on the aligned poses.
+  bool align = false;
   /// Seconds the camera stands still before each path (the VIO's standstill start); < 0: 1.5 with
   /// vio, 0 without.
   double rest_s = -1.0;

@@ -131,6 +131,7 @@ void writeDemoReport(const DemoReport& report, const DiffResult& result, const D
   if (!report.incremental_json.empty()) {
     out << "  \"incremental\": " << report.incremental_json << ",\n";
   }
+  if (report.alignment) out << "  \"alignment\": " << demoAlignJson(*report.alignment) << ",\n";
   out << "  \"change_detection\": {\n";
   writeDiffJsonMembers(out, result, files, info, 4);
   out << "\n  }\n}\n";
@@ -173,6 +174,7 @@ std::string summarizeDemo(const DemoReport& report, const std::string& out_dir) 
     << "true), views, label overlays, object meshes and report.json to " << out_dir << "/.";
   if (!report.incremental_summary.empty()) s << " " << report.incremental_summary;
   if (!report.sessions.empty() && report.sessions.front().vio) s << " " << summarizeVio(report);
+  if (report.alignment) s << " " << summarizeDemoAlign(*report.alignment);
   return s.str();
 }
 

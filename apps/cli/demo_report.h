@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/demo_align.h"
 #include "cli/demo_vio.h"
 #include "cli/diff_report.h"
 #include "cli/select_incremental.h"
@@ -40,6 +41,7 @@ struct DemoReport {
   std::string incremental_summary;               // `--incremental`, "" without
   std::string incremental_json;                  // the same as a JSON object, "" without
   std::optional<IncrementalResult> incremental;  // the figures behind both
+  std::optional<DemoAlignResult> alignment;      // `--align`
 };
 
 /// Writes the report as JSON, atomically: the demo's figures, the evaluation and the change
