@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "io/dataset.h"
 #include "io/image_io.h"
+#include "io/tum_format.h"
 #include "io/tum_writer.h"
 #include "test_utils.h"
 
@@ -249,6 +250,63 @@ TEST_F(IoTest, FramesWithoutPoseAreDroppedAndReported) {
   EXPECT_NE(dataset->warnings().find("1 of 3 depth frames dropped"), std::string::npos);
   std::ofstream(folder + "/groundtruth.txt") << "# no poses\n";
   expectInputError([&] { openDataset(folder); }, "no frames");
+}
+
+TEST_F(IoTest, TrajectoryFileOverridesTheGroundtruth) {
+  const std::string folder = writeSmall();
+  const std::vector<RgbdFrame> frames = smallFrames();
+  Eigen::Isometry3d shift = Eigen::Isometry3d::Identity();
+  shift.translation() = Eigen::Vector3d(3.0, -2.0, 0.5);
+  // Poses for frames 0 and 2 only, 5 ms off their timestamps (within the 20 ms association).
+  std::vector<tum::TimedPose> poses = {{frames[0].timestamp_s + 0.005, shift * frames[0].T_W_C},
+                                       {frames[2].timestamp_s - 0.005, shift * frames[2].T_W_C}};
+  const std::string trajectory = (dir_ / "aligned.txt").string();
+  writeTumTrajectory(trajectory, poses, {"aligned poses"});
+  fs::remove(fs::path(folder) / "groundtruth.txt");  // not needed with an override
+  DatasetOptions options;
+  options.trajectory_file = trajectory;
+  const auto dataset = openDataset(folder, options);
+  ASSERT_EQ(dataset->size(), 2u);
+  EXPECT_LT(maxPoseDifference(dataset->load(0).T_W_C, poses[0].T_W_C), 1e-8);
+  EXPECT_LT(maxPoseDifference(dataset->load(1).T_W_C, poses[1].T_W_C), 1e-8);
+  EXPECT_TRUE(dataset->load(1).depth.depth_m == frames[2].depth.depth_m);
+  EXPECT_NE(dataset->warnings().find("1 of 3 depth frames dropped: no pose in aligned.txt"),
+            std::string::npos)
+      << dataset->warnings();
+}
+
+TEST_F(IoTest, MissingOrMalformedTrajectoryFileIsNamed) {
+  const std::string folder = writeSmall();
+  DatasetOptions options;
+  options.trajectory_file = (dir_ / "absent.txt").string();
+  expectInputError([&] { openDataset(folder, options); }, "absent.txt: trajectory file not found");
+  options.trajectory_file = (dir_ / "bad.txt").string();
+  std::ofstream(options.trajectory_file) << "# header\n10.0 1 2 3 0 0 0\n";
+  expectInputError([&] { openDataset(folder, options); }, "bad.txt:2: expected 'timestamp tx");
+}
+
+TEST_F(IoTest, SevenScenesRefusesATrajectoryFile) {
+  writeDepthPng((dir_ / "frame-000000.depth.png").string(), DepthImage(32, 24, 1.5f), 1000.0);
+  std::ofstream(dir_ / "frame-000000.pose.txt") << "1 0 0 0\n0 1 0 0\n0 0 1 2\n0 0 0 1\n";
+  DatasetOptions options;
+  options.trajectory_file = (dir_ / "aligned.txt").string();
+  expectInputError([&] { openDataset(dir_.string(), options); }, "TUM RGB-D folders only");
+}
+
+TEST_F(IoTest, DepthListedByAbsolutePath) {
+  const std::string folder = writeSmall();
+  const fs::path other = dir_ / "other";
+  fs::create_directories(other);
+  fs::copy_file(fs::path(folder) / "groundtruth.txt", other / "groundtruth.txt");
+  fs::copy_file(fs::path(folder) / "camera.yaml", other / "camera.yaml");
+  std::vector<tum::TimedFile> depth;
+  for (const tum::TimedFile& f : tum::readFileList(folder + "/depth.txt")) {
+    depth.push_back({f.timestamp_s, fs::absolute(fs::path(folder) / f.file).string()});
+  }
+  writeTumFileList((other / "depth.txt").string(), depth, {});
+  const auto dataset = openDataset(other.string());
+  ASSERT_EQ(dataset->size(), 3u);
+  EXPECT_TRUE(dataset->load(2).depth.depth_m == smallFrames()[2].depth.depth_m);
 }
 
 }  // namespace

@@ -6,11 +6,15 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <optional>
 
 #include "cli/demo_command.h"
 #include "cli/sim_command.h"
 #include "io/dataset.h"
+#include "io/odometry_frame_file.h"
+#include "io/tum_format.h"
+#include "sim/sensors/odometry_frame.h"
 #include "sim/session/sim_session.h"
 #include "sim/world/world_paths.h"
 
@@ -18,6 +22,11 @@ namespace strata::sim {
 namespace {
 
 namespace fs = std::filesystem;
+
+std::string readFileText(const fs::path& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
 
 std::shared_ptr<const World> loadShipped(const std::string& name) {
   return std::make_shared<const World>(World::load(findWorld(name)));
@@ -140,6 +149,46 @@ TEST(SimCommand, WritesReadableTumSessionsWithGroundTruthAndImu) {
   }
   EXPECT_TRUE(fs::exists(out / "ground_truth" / "session_1" / "objects.json"));
   EXPECT_TRUE(fs::exists(out / "ground_truth" / "session_1" / "world.ply"));
+  fs::remove_all(out);
+}
+
+TEST(SimCommand, OwnFramesPutEachSessionsOdometryInAFrameOfItsOwn) {
+  const fs::path out =
+      fs::temp_directory_path() / ("strata_sim_own_frames_test_" + std::to_string(::getpid()));
+  fs::remove_all(out);
+  apps::SimOptions options;
+  options.sessions = 2;
+  options.max_frames = 4;
+  options.out_dir = (out / "a").string();
+  options.own_frames = true;  // implies drift
+  options.quiet = true;
+  testing::internal::CaptureStdout();
+  ASSERT_EQ(apps::runSim(options), 0);
+  options.out_dir = (out / "b").string();
+  ASSERT_EQ(apps::runSim(options), 0);
+  testing::internal::GetCapturedStdout();
+
+  const auto world = loadShipped("room");
+  SimSessionConfig config = smallConfig(4);
+  config.drift = true;
+  std::vector<Eigen::Isometry3d> frames;
+  for (int s = 0; s < 2; ++s) {
+    const fs::path dir = out / "a" / ("session_" + std::to_string(s));
+    const SimSessionDataset session(world, s, config);
+    const Eigen::Isometry3d T_W_S = readOdometryFrame((dir / "odometry_frame.txt").string());
+    EXPECT_TRUE(T_W_S.isApprox(randomOdometryFrame({}, session.seed()), 1e-8));
+    const std::vector<tum::TimedPose> odometry =
+        tum::readTrajectory((dir / "odometry.txt").string());
+    ASSERT_EQ(odometry.size(), session.size());
+    for (std::size_t i = 0; i < odometry.size(); ++i) {
+      const Eigen::Isometry3d expected = T_W_S.inverse() * session.givenPoses()[i];
+      EXPECT_LT((odometry[i].T_W_C.matrix() - expected.matrix()).cwiseAbs().maxCoeff(), 1e-8);
+    }
+    EXPECT_EQ(readFileText(dir / "odometry.txt"),
+              readFileText(out / "b" / ("session_" + std::to_string(s)) / "odometry.txt"));
+    frames.push_back(T_W_S);
+  }
+  EXPECT_GT((frames[0].matrix() - frames[1].matrix()).cwiseAbs().maxCoeff(), 0.1);
   fs::remove_all(out);
 }
 

@@ -42,20 +42,39 @@ struct SessionInput {
   std::unique_ptr<TsdfMap> map;
 };
 
+/// The dataset options of session `index`: with --trajectory, its poses from that file.
+DatasetOptions sessionDatasetOptions(const DiffOptions& o, std::size_t index) {
+  DatasetOptions options = o.dataset_options;
+  if (o.trajectories.empty()) return options;
+  if (fs::is_regular_file(o.sessions[index])) {
+    throw InputError("session '" + o.sessions[index] +
+                     "' is a saved map; --trajectory applies to session folders only");
+  }
+  options.trajectory_file = o.trajectories[index];
+  return options;
+}
+
 /// Opens every session before any work, so a bad path fails at once, naming it.
 std::vector<SessionInput> openSessions(const DiffOptions& o) {
   for (const std::string& path : o.sessions) {
     if (!fs::exists(path)) throw InputError("session '" + path + "' does not exist");
   }
   if (o.sessions.size() < 2) throw InputError("diff needs at least two sessions to compare");
+  if (!o.trajectories.empty() && o.trajectories.size() != o.sessions.size()) {
+    throw InputError("--trajectory given " + std::to_string(o.trajectories.size()) +
+                     " time(s) for " + std::to_string(o.sessions.size()) +
+                     " sessions: give one per session, in order, or none");
+  }
   std::vector<SessionInput> inputs;
-  for (const std::string& path : o.sessions) {
+  for (std::size_t i = 0; i < o.sessions.size(); ++i) {
+    const std::string& path = o.sessions[i];
     SessionInput input{path, nullptr, nullptr};
+    const DatasetOptions options = sessionDatasetOptions(o, i);
     if (fs::is_regular_file(path)) {
       input.map = std::make_unique<TsdfMap>(loadMap(path));
     } else {
-      input.frames = std::make_unique<FrameSelection>(openDataset(path, o.dataset_options),
-                                                      o.stride, o.frames);
+      input.frames =
+          std::make_unique<FrameSelection>(openDataset(path, options), o.stride, o.frames);
     }
     inputs.push_back(std::move(input));
   }
@@ -120,6 +139,11 @@ CLI::App* addDiffCommand(CLI::App& app, DiffOptions& o) {
                    ".strata maps, oldest first")
       ->required();
   diff->add_option("--out", o.out_dir, "Output folder")->required();
+  diff->add_option("--trajectory", o.trajectories,
+                   "TUM trajectory replacing a session folder's groundtruth.txt (e.g. aligned "
+                   "odometry); repeat once per session, in order")
+      ->allow_extra_args(false)
+      ->take_all();
   diff->add_option("--voxel-size", o.voxel_size_m, "Voxel edge, metres (saved maps keep theirs)")
       ->capture_default_str();
   diff->add_option("--weight", o.weight,

@@ -16,6 +16,9 @@ namespace strata::apps {
 
 struct DiffOptions {
   std::vector<std::string> sessions;  // folders or .strata files, in time order
+  /// Empty, or one TUM trajectory per session in order (e.g. aligned odometry) whose poses replace
+  /// the folder's groundtruth.txt (DatasetOptions::trajectory_file); saved maps take none.
+  std::vector<std::string> trajectories;
   std::string out_dir;
   float voxel_size_m = 0.02f;  // ignored when a session is a saved map (its own is used)
   /// "constant" (default: the minimum weight then counts frames) or "inv-z2".
@@ -31,8 +34,8 @@ struct DiffOptions {
 
 CLI::App* addDiffCommand(CLI::App& app, DiffOptions& options);
 
-/// Returns the exit code: 0 done, 2 bad input (a missing or unreadable session names its path),
-/// 3 device error, 1 anything else.
+/// Returns the exit code: 0 done, 2 bad input (a missing or unreadable session names its path; as
+/// many --trajectory as sessions, or none), 3 device error, 1 anything else.
 int runDiff(const DiffOptions& options);
 
 }  // namespace strata::apps

@@ -6,6 +6,7 @@
 #include "cli/align_command.h"
 #include "cli/demo_command.h"
 #include "cli/diff_command.h"
+#include "cli/drift_command.h"
 #include "cli/esdf_command.h"
 #include "cli/eval_trajectory_command.h"
 #include "cli/fuse_command.h"
@@ -34,8 +35,9 @@ int listDevices() {
 int runDefault() {
   std::printf(
       "strata: no command given; running the multi-session demo on the shipped room "
-      "(see `strata --help` for fuse, sim, demo, diff, mesh, esdf, select, eval-trajectory, map, "
-      "odometry, align, devices)\n");
+      "(see `strata --help` for fuse, sim, demo, diff, drift, mesh, esdf, select, eval-trajectory, "
+      "map, odometry, align, devices)
+");
   return strata::apps::runDemo(strata::apps::DemoOptions{});
 }
 
@@ -54,6 +56,8 @@ int main(int argc, char** argv) {
   CLI::App* demo = strata::apps::addDemoCommand(app, demo_options);
   strata::apps::DiffOptions diff_options;
   CLI::App* diff = strata::apps::addDiffCommand(app, diff_options);
+  strata::apps::DriftOptions drift_options;
+  CLI::App* drift = strata::apps::addDriftCommand(app, drift_options);
   strata::apps::EsdfOptions esdf_options;
   CLI::App* esdf = strata::apps::addEsdfCommand(app, esdf_options);
   strata::apps::SelectOptions select_options;
@@ -77,6 +81,7 @@ int main(int argc, char** argv) {
   if (sim->parsed()) return strata::apps::runSim(sim_options);
   if (demo->parsed()) return strata::apps::runDemo(demo_options);
   if (diff->parsed()) return strata::apps::runDiff(diff_options);
+  if (drift->parsed()) return strata::apps::runDrift(drift_options);
   if (esdf->parsed()) return strata::apps::runEsdf(esdf_options);
   if (select_cmd->parsed()) return strata::apps::runSelect(select_options);
   if (eval_trajectory->parsed()) return strata::apps::runEvalTrajectory(eval_trajectory_options);

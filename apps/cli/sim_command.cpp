@@ -3,14 +3,14 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>
-#include <sstream>
 
 #include "cli/progress.h"
 #include "cli/sim_setup.h"
-#include "core/atomic_file.h"
 #include "core/error.h"
+#include "io/odometry_frame_file.h"
 #include "io/tum_format.h"
 #include "io/tum_writer.h"
+#include "sim/sensors/odometry_frame.h"
 #include "sim/session/stereo_recording.h"
 #include "sim/world/ground_truth.h"
 
@@ -19,25 +19,26 @@ namespace {
 
 namespace fs = std::filesystem;
 
-void writeText(const fs::path& path, const std::string& text) {
-  writeFileAtomically(path.string(), std::vector<std::uint8_t>(text.begin(), text.end()));
+/// The poses handed to a mapper (drifted odometry), in the groundtruth.txt format: in the world
+/// frame, or with `own_frame` in a random frame of the session's own (T_S_C = T_S_W * drifted
+/// T_W_C), whose T_W_S goes to odometry_frame.txt.
+void writeOdometry(const fs::path& dir, const sim::SimSessionDataset& session, bool own_frame) {
+  Eigen::Isometry3d T_W_S = Eigen::Isometry3d::Identity();
+  if (own_frame) T_W_S = sim::randomOdometryFrame({}, session.seed());
+  const std::vector<Eigen::Isometry3d> T_S_C =
+      sim::posesInFrame(T_W_S.inverse(), session.givenPoses());
+  std::vector<tum::TimedPose> poses;
+  for (std::size_t i = 0; i < session.size(); ++i)
+    poses.push_back({session.timestamp(i), T_S_C[i]});
+  const char* frame = own_frame ? "session frame S, see odometry_frame.txt" : "world";
+  writeTumTrajectory((dir / "odometry.txt").string(), poses,
+                     {"odometry given to the mapper (drifted); groundtruth.txt holds the truth",
+                      std::string("timestamp tx ty tz qx qy qz qw (camera-to-") + frame + ")"});
+  if (own_frame) writeOdometryFrame((dir / "odometry_frame.txt").string(), T_W_S);
 }
 
-/// The poses handed to a mapper (drifted odometry), in the groundtruth.txt format.
-void writeOdometry(const fs::path& path, const sim::SimSessionDataset& session) {
-  std::ostringstream out;
-  out << "# odometry given to the mapper (drifted); groundtruth.txt holds the truth\n"
-      << "# timestamp tx ty tz qx qy qz qw (camera-to-world)\n";
-  for (std::size_t i = 0; i < session.size(); ++i) {
-    char stamp[32];
-    std::snprintf(stamp, sizeof(stamp), "%.6f", session.timestamp(i));
-    out << stamp << " " << tum::poseToTum(session.givenPoses()[i]) << "\n";
-  }
-  writeText(path, out.str());
-}
-
-std::size_t writeSession(const sim::SimSessionDataset& session, const fs::path& dir, bool drift,
-                         ProgressBar& progress, std::size_t& done) {
+std::size_t writeSession(const sim::SimSessionDataset& session, const fs::path& dir,
+                         const SimOptions& o, ProgressBar& progress, std::size_t& done) {
   TumWriter writer(dir.string(), session.intrinsics());
   for (std::size_t i = 0; i < session.size(); ++i) {
     RgbdFrame frame = session.load(i);
@@ -46,7 +47,7 @@ std::size_t writeSession(const sim::SimSessionDataset& session, const fs::path& 
     progress.update(++done);
   }
   writer.finish();
-  if (drift) writeOdometry(dir / "odometry.txt", session);
+  if (o.drift || o.own_frames) writeOdometry(dir, session, o.own_frames);
   fs::create_directories(dir / "imu0");
   sim::writeImuCsv((dir / "imu0" / "data.csv").string(), session.imu());
   return session.size();
@@ -76,6 +77,9 @@ CLI::App* addSimCommand(CLI::App& app, SimOptions& o) {
   sim->add_option("--rate", o.rate_hz, "Frame rate along the path, Hz")->capture_default_str();
   sim->add_flag("--no-noise", o.no_noise, "Exact depth (16-bit quantisation only)");
   sim->add_flag("--drift", o.drift, "Also write drifted odometry (odometry.txt)");
+  sim->add_flag("--own-frames", o.own_frames,
+                "Odometry of each session in a random gravity-aligned frame of its own, true "
+                "offset in odometry_frame.txt (implies --drift)");
   sim->add_flag("--quiet", o.quiet, "No progress bar");
   sim->add_option("--rest", o.rest_s,
                   "Seconds the camera rests before each path starts (no sway; VIO standstill)")
@@ -101,7 +105,8 @@ CLI::App* addSimCommand(CLI::App& app, SimOptions& o) {
 int runSim(const SimOptions& o) {
   try {
     const auto world = loadWorld(o.world, o.seed, o.sessions);
-    sim::SimSessionConfig config = sessionConfig(o.rate_hz, o.max_frames, !o.no_noise, o.drift);
+    sim::SimSessionConfig config =
+        sessionConfig(o.rate_hz, o.max_frames, !o.no_noise, o.drift || o.own_frames);
     config.trajectory.rest_at_start_s = o.rest_s;
     std::vector<std::unique_ptr<sim::SimSessionDataset>> sessions;
     std::size_t total = 0;
@@ -123,7 +128,7 @@ int runSim(const SimOptions& o) {
     for (const auto& session : sessions) {
       char name[32];
       std::snprintf(name, sizeof(name), "session_%d", session->session());
-      writeSession(*session, out / name, o.drift, progress, done);
+      writeSession(*session, out / name, o, progress, done);
       if (o.stereo) {
         sim::writeStereoRecording(*session, stereo, (out / name).string(),
                                   [&] { progress.update(++done); });

@@ -21,6 +21,9 @@ struct SimOptions {
   double rate_hz = 30.0;
   bool no_noise = false;
   bool drift = false;
+  /// Odometry in a random gravity-aligned frame per session (T_S_C), the true T_W_S beside it in
+  /// odometry_frame.txt. Implies drift: an odometry's own frame comes with its drift.
+  bool own_frames = false;
   bool quiet = false;
   /// > 0: each session's camera rests this long before the path starts (a VIO standstill start;
   /// every stream, RGB-D included, covers the rest).

@@ -21,6 +21,10 @@ struct DatasetOptions {
   std::optional<CameraIntrinsics> intrinsics;
   /// Override the depth PNG scale (units per metre) from every file.
   std::optional<double> depth_scale;
+  /// Optional TUM trajectory file (camera-to-world, e.g. aligned odometry) whose poses a TUM
+  /// folder's frames take instead of its groundtruth.txt's (same association). 7-Scenes folders
+  /// refuse it (their poses are per-frame files).
+  std::string trajectory_file;
   /// Read colour images (false: frames have empty colour, loading is faster).
   bool load_color = true;
 };

@@ -141,6 +141,11 @@ Eigen::Isometry3d readPoseMatrix(std::istream& in, const std::string& path) {
 
 std::unique_ptr<Dataset> open7ScenesDataset(const std::string& folder,
                                             const DatasetOptions& options) {
+  if (!options.trajectory_file.empty()) {
+    throw InputError(folder + ": a trajectory file (" + options.trajectory_file +
+                     ") overrides poses of TUM RGB-D folders only; 7-Scenes poses are per-frame "
+                     "files");
+  }
   const fs::path dir(folder);
   std::vector<std::string> stems = frameStems(dir);
   if (stems.empty()) throw InputError(folder + ": no frame-*.depth.png images (7-Scenes layout)");

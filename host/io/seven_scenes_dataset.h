@@ -12,7 +12,7 @@ namespace strata {
 /// index / 30 s. Intrinsics: camera.yaml if present, else camera-intrinsics.txt (3x3 K), else the
 /// 7-Scenes defaults fx=fy=585, cx=320, cy=240, 640x480. Frames are the frame-*.depth.png files in
 /// name order. Throws InputError naming the file: no depth images, a depth image without its pose
-/// file.
+/// file, or options.trajectory_file set (not supported for this layout).
 std::unique_ptr<Dataset> open7ScenesDataset(const std::string& folder,
                                             const DatasetOptions& options);
 

@@ -57,6 +57,8 @@ Association associate(const fs::path& folder, const std::vector<tum::TimedFile>&
       ++out.without_pose;
       continue;
     }
+    // NOTE: an absolute listed path replaces the folder (std::filesystem::operator/), so a list
+    // may name images of another folder (strata drift writes such lists).
     TumEntry entry{d.timestamp_s, (folder / d.file).string(), "", poses[*pose].T_W_C};
     const auto color = tum::nearestWithin(rgb_times, d.timestamp_s, tum::kMaxTimeDifference_s);
     if (color) entry.color_path = (folder / rgb[*color].file).string();
@@ -74,11 +76,12 @@ void requireFilesExist(const std::vector<TumEntry>& entries, const fs::path& lis
   }
 }
 
-std::string describeWarnings(const Association& a, std::size_t depth_count) {
+std::string describeWarnings(const Association& a, std::size_t depth_count,
+                             const fs::path& pose_list) {
   std::ostringstream out;
   if (a.without_pose > 0) {
-    out << a.without_pose << " of " << depth_count
-        << " depth frames dropped: no groundtruth pose within 20 ms\n";
+    out << a.without_pose << " of " << depth_count << " depth frames dropped: no pose in "
+        << pose_list.filename().string() << " within 20 ms\n";
   }
   if (a.without_color > 0) {
     out << a.without_color << " frames have no colour image within 20 ms\n";
@@ -135,12 +138,16 @@ std::unique_ptr<Dataset> openTumDataset(const std::string& folder, const Dataset
   const fs::path dir(folder);
   const fs::path depth_list = dir / "depth.txt";
   const fs::path rgb_list = dir / "rgb.txt";
-  const fs::path pose_list = dir / "groundtruth.txt";
-  for (const fs::path& required : {depth_list, pose_list}) {
-    if (!fs::is_regular_file(required)) {
-      throw InputError(required.string() + ": missing (a TUM RGB-D folder needs depth.txt and " +
-                       "groundtruth.txt)");
-    }
+  const bool overridden = !options.trajectory_file.empty();
+  const fs::path pose_list =
+      overridden ? fs::path(options.trajectory_file) : dir / "groundtruth.txt";
+  if (!fs::is_regular_file(depth_list)) {
+    throw InputError(depth_list.string() + ": missing (a TUM RGB-D folder needs depth.txt)");
+  }
+  if (!fs::is_regular_file(pose_list)) {
+    throw InputError(pose_list.string() +
+                     (overridden ? ": trajectory file not found"
+                                 : ": missing (a TUM RGB-D folder needs groundtruth.txt)"));
   }
   CameraModel model = resolveCameraModel(folder, options, tumDefaults());
   const std::vector<tum::TimedFile> depth = tum::readFileList(depth_list.string());
@@ -150,10 +157,11 @@ std::unique_ptr<Dataset> openTumDataset(const std::string& folder, const Dataset
   Association association = associate(dir, depth, rgb, tum::readTrajectory(pose_list.string()));
   if (association.entries.empty()) {
     throw InputError(folder + ": no frames: depth.txt lists " + std::to_string(depth.size()) +
-                     " depth image(s), none with a groundtruth.txt pose within 20 ms");
+                     " depth image(s), none with a pose in " + pose_list.string() +
+                     " within 20 ms");
   }
   requireFilesExist(association.entries, depth_list);
-  std::string warnings = describeWarnings(association, depth.size());
+  std::string warnings = describeWarnings(association, depth.size(), pose_list);
   return std::make_unique<TumDataset>(folder, std::move(model), std::move(association),
                                       std::move(warnings));
 }

@@ -36,7 +36,35 @@ void writeText(const fs::path& path, const std::string& text) {
   writeFileAtomically(path.string(), std::vector<std::uint8_t>(text.begin(), text.end()));
 }
 
+std::string commentText(const std::vector<std::string>& comment) {
+  std::string text;
+  for (const std::string& line : comment) text += "# " + line + "\n";
+  return text;
+}
+
 }  // namespace
+
+void writeTumTrajectory(const std::string& path, const std::vector<tum::TimedPose>& poses,
+                        const std::vector<std::string>& comment) {
+  std::string text = commentText(comment);
+  for (const tum::TimedPose& pose : poses) {
+    text += timestampText(pose.timestamp_s) + " " + tum::poseToTum(pose.T_W_C) + "\n";
+  }
+  writeText(path, text);
+}
+
+void writeTumFileList(const std::string& path, const std::vector<tum::TimedFile>& files,
+                      const std::vector<std::string>& comment) {
+  std::string text = commentText(comment);
+  for (const tum::TimedFile& file : files) {
+    if (file.file.find_first_of(" \t\r\n") != std::string::npos) {
+      throw InputError(path + ": cannot list '" + file.file +
+                       "': TUM file lists cannot hold a name with whitespace");
+    }
+    text += timestampText(file.timestamp_s) + " " + file.file + "\n";
+  }
+  writeText(path, text);
+}
 
 TumWriter::TumWriter(const std::string& dir, const CameraIntrinsics& intrinsics,
                      double depth_scale)

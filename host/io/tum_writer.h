@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "core/types.h"
+#include "io/tum_format.h"
 
 namespace strata {
 
@@ -17,6 +18,16 @@ void writeTumDataset(const std::string& dir, const CameraIntrinsics& intrinsics,
 
 /// The same layout written one frame at a time (long recordings need not fit in memory). Images
 /// are written as they come; the lists and camera.yaml atomically by finish().
+/// Writes a trajectory file (`timestamp tx ty tz qx qy qz qw`, 6 decimals of seconds) atomically,
+/// after the `comment` lines, each written as "# line". Error when it cannot be written.
+void writeTumTrajectory(const std::string& path, const std::vector<tum::TimedPose>& poses,
+                        const std::vector<std::string>& comment);
+
+/// Writes a file list (rgb.txt / depth.txt: `timestamp file`) atomically, after the `comment`
+/// lines. Throws InputError for a file name with whitespace (the format splits lines on it).
+void writeTumFileList(const std::string& path, const std::vector<tum::TimedFile>& files,
+                      const std::vector<std::string>& comment);
+
 class TumWriter {
  public:
   TumWriter(const std::string& dir, const CameraIntrinsics& intrinsics,

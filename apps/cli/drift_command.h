@@ -1,0 +1,29 @@
+#pragma once
+// `strata drift SRC_DIR --out DIR`: a slice of a TUM RGB-D folder written as a session with
+// drifted odometry in a random frame of its own, for alignment tests
+// (sim/session/drifted_session.h). Exit 0 on success, 2 on bad input (missing folder, empty slice,
+// first > last), 1 on other errors.
+#include <cstdint>
+#include <string>
+
+#include "sim/session/drifted_session.h"
+
+namespace CLI {
+class App;
+}
+
+namespace strata::apps {
+
+struct DriftOptions {
+  std::string source_dir;
+  std::string out_dir;
+  std::size_t first_frame = 0;
+  long long last_frame = -1;  // < 0: the source's last frame
+  sim::DriftedSessionConfig config;
+  bool no_offset = false;
+};
+
+CLI::App* addDriftCommand(CLI::App& app, DriftOptions& options);
+int runDrift(const DriftOptions& options);
+
+}  // namespace strata::apps
