@@ -16,10 +16,10 @@ namespace strata::align {
 using Descriptor = std::array<std::uint8_t, 32>;  // ORB: 256 bits
 
 struct FeatureConfig {
-  int max_features = 1000;    // ORB keypoints kept per keyframe (best response first)
-  int pyramid_levels = 8;     // ORB scale pyramid
-  float scale_factor = 1.2f;  // ORB pyramid ratio
-  float min_depth_m = 0.1f;   // depth outside [min, max] leaves the point unknown (NaN)
+  int max_features = 1000;      // ORB keypoints kept per keyframe (best response first)
+  int pyramid_levels = 8;       // ORB scale pyramid
+  float scale_factor = 1.2f;    // ORB pyramid ratio
+  float min_depth_m = 0.1f;     // depth outside [min, max] leaves the point unknown (NaN)
   float max_depth_m = 6.0f;
 
   /// Throws InputError naming the first bad field.
@@ -30,7 +30,7 @@ struct FeatureConfig {
 struct KeyframeFeatures {
   std::vector<Eigen::Vector2f> keypoints_px;  // pixel centres at integers
   std::vector<Descriptor> descriptors;
-  std::vector<Eigen::Vector3f> points_C_m;  // NaN where the depth is missing or out of range
+  std::vector<Eigen::Vector3f> points_C_m;    // NaN where the depth is missing or out of range
   std::size_t size() const { return keypoints_px.size(); }
 };
 

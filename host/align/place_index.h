@@ -15,19 +15,19 @@
 namespace strata::align {
 
 struct PlaceIndexConfig {
-  int neighbours = 4;             // nearest descriptors per query descriptor
-  int max_hamming_distance = 64;  // of 256 bits; farther neighbours do not vote
-  int hnsw_m = 16;                // HNSW graph degree
+  int neighbours = 4;              // nearest descriptors per query descriptor
+  int max_hamming_distance = 64;   // of 256 bits; farther neighbours do not vote
+  int hnsw_m = 16;                 // HNSW graph degree
   int hnsw_ef_construction = 100;
   int hnsw_ef_search = 64;
-  bool exact = false;  // brute-force search instead of HNSW (recall reference)
+  bool exact = false;              // brute-force search instead of HNSW (recall reference)
   void validate() const;
 };
 
 struct PlaceCandidate {
   std::size_t keyframe = 0;  // the caller's keyframe index given to add()
   int votes = 0;
-  double score = 0.0;  // votes / sqrt(features of query * features of candidate)
+  double score = 0.0;        // votes / sqrt(features of query * features of candidate)
 };
 
 class PlaceIndex {

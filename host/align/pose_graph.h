@@ -21,7 +21,7 @@
 namespace strata::align {
 
 struct GraphSession {
-  std::vector<Eigen::Isometry3d> T_S_C;  // keyframes in time order
+  std::vector<Eigen::Isometry3d> T_S_C;           // keyframes in time order
   /// Information of the odometry edge k -> k+1 (size T_S_C.size() - 1), or empty: every edge
   /// gets PoseGraphConfig::default_odometry_information.
   std::vector<store::Matrix6d> odometry_information;
@@ -36,12 +36,12 @@ struct GraphLoop {
 
 struct PoseGraphConfig {
   store::Matrix6d default_odometry_information = store::Matrix6d::Identity() * 1e4;
-  double switch_prior_weight = 1.0;  // information of the switch prior (1 - s)^2
-  double switch_accept = 0.5;        // a loop whose switch ends above this is kept
+  double switch_prior_weight = 1.0;   // information of the switch prior (1 - s)^2
+  double switch_accept = 0.5;         // a loop whose switch ends above this is kept
   /// Placing a session: a loop's implied T_W_S agrees with the consensus within these.
   double consensus_translation_m = 0.3;
   double consensus_rotation_rad = 0.15;
-  int min_consensus_loops = 2;  // loops agreeing on a session's placement to place it
+  int min_consensus_loops = 2;        // loops agreeing on a session's placement to place it
   int max_iterations = 100;
   int threads = 2;
   void validate() const;
@@ -55,8 +55,8 @@ struct PoseGraphResult {
   std::vector<bool> loop_accepted;  // switch above switch_accept and both sessions aligned
   int iterations = 0;
   double initial_cost = 0.0, final_cost = 0.0;
-  double solve_seconds = 0.0;
-  std::string report;  // Ceres's brief report
+  double solve_seconds = 0.0;       // wall time of placement and relaxation
+  std::string report;               // Ceres's brief report
 };
 
 /// Aligns and relaxes the sessions. InputError for a loop naming a session or keyframe that does
