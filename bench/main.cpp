@@ -10,6 +10,7 @@
 #include "lcm_command.h"
 #include "select_command.h"
 #include "occupancy_command.h"
+#include "posegraph_command.h"
 #include "sim_command.h"
 #include "soak_command.h"
 #include "vio_command.h"
@@ -40,6 +41,8 @@ int main(int argc, char** argv) {
   CLI::App* track = strata::bench::addTrackCommand(app, track_options);
   strata::bench::FrontendBenchOptions frontend_options;
   CLI::App* frontend = strata::bench::addFrontendCommand(app, frontend_options);
+  strata::bench::PoseGraphBenchOptions posegraph_options;
+  CLI::App* posegraph = strata::bench::addPoseGraphCommand(app, posegraph_options);
   strata::bench::AllBenchOptions all_options;
   CLI::App* all = strata::bench::addAllCommand(app, all_options);
   try {
@@ -58,6 +61,7 @@ int main(int argc, char** argv) {
   if (vio->parsed()) return strata::bench::runVioBench(vio_options);
   if (track->parsed()) return strata::bench::runTrackBench(track_options);
   if (frontend->parsed()) return strata::bench::runFrontendBench(frontend_options);
+  if (posegraph->parsed()) return strata::bench::runPoseGraphBench(posegraph_options);
   if (all->parsed()) return strata::bench::runAllBench(all_options);
   return 2;
 }

@@ -22,7 +22,7 @@ foreach(folder core vk map integrate raycast esdf mesh occupancy change select t
           FILES_MATCHING PATTERN "*.h" PATTERN "internal" EXCLUDE)
 endforeach()
 if(STRATA_BUILD_IO)
-  foreach(folder io store)
+  foreach(folder io store align)
     install(DIRECTORY ${PROJECT_SOURCE_DIR}/host/${folder}
             DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/strata
             FILES_MATCHING PATTERN "*.h" PATTERN "internal" EXCLUDE)

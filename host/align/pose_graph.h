@@ -55,7 +55,7 @@ struct PoseGraphResult {
   std::vector<bool> loop_accepted;  // switch above switch_accept and both sessions aligned
   int iterations = 0;
   double initial_cost = 0.0, final_cost = 0.0;
-  double solve_seconds = 0.0;
+  double solve_seconds = 0.0;       // wall time of placement and relaxation
   std::string report;               // Ceres's brief report
 };
 
