@@ -36,7 +36,10 @@ struct GraphLoop {
 
 struct PoseGraphConfig {
   store::Matrix6d default_odometry_information = store::Matrix6d::Identity() * 1e4;
-  double switch_prior_weight = 1.0;   // information of the switch prior (1 - s)^2
+  /// Information of the switch prior (1 - s)^2. A loop ends at s = w / (w + chi2), so with
+  /// switch_accept 0.5 it is kept while its chi2 stays under w: 16.8 is the 99 % point of chi2
+  /// with 6 degrees of freedom, so a true loop whose information states its noise is kept.
+  double switch_prior_weight = 16.8;
   double switch_accept = 0.5;         // a loop whose switch ends above this is kept
   /// Placing a session: a loop's implied T_W_S agrees with the consensus within these.
   double consensus_translation_m = 0.3;
