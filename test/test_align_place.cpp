@@ -34,7 +34,7 @@ double msSince(Clock::time_point start) {
 class Redkitchen {
  public:
   explicit Redkitchen(const std::string& dir) : dataset_(openDataset(dir)) {}
-  const CameraIntrinsics intrinsics() const { return dataset_->intrinsics(); }
+  CameraIntrinsics intrinsics() const { return dataset_->intrinsics(); }
   std::size_t size() const { return dataset_->size(); }
 
   const RgbdFrame& frame(std::size_t i) {
