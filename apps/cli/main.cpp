@@ -36,8 +36,7 @@ int runDefault() {
   std::printf(
       "strata: no command given; running the multi-session demo on the shipped room "
       "(see `strata --help` for fuse, sim, demo, diff, drift, mesh, esdf, select, eval-trajectory, "
-      "map, odometry, align, devices)
-");
+      "map, odometry, align, devices)\n");
   return strata::apps::runDemo(strata::apps::DemoOptions{});
 }
 
