@@ -104,7 +104,9 @@ TEST(AlignSessions, ASessionOfAnotherWorldStaysUnalignedAndTheOthersAlign) {
   EXPECT_TRUE(result.sessions[1].frame_T_W_C.empty());
   EXPECT_TRUE(result.sessions[2].aligned);
   for (const AlignLoop& loop : result.loops) {
-    if (loop.session_a == 1 || loop.session_b == 1) EXPECT_FALSE(loop.accepted);
+    if (loop.session_a == 1 || loop.session_b == 1) {
+      EXPECT_FALSE(loop.accepted);
+    }
   }
 }
 

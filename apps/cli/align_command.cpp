@@ -22,6 +22,8 @@ void importFolders(store::Store& db, const AlignOptions& o) {
   store::ImportOptions options;
   options.keyframe_every = o.keyframe_every;
   options.keyframe_distance_m = o.keyframe_distance_m;
+  options.odometry_sigma_m = o.odometry_sigma_m;
+  options.odometry_sigma_rad = o.odometry_sigma_rad;
   for (const std::string& dir : o.session_dirs) {
     std::optional<ProgressBar> bar;
     const auto progress = [&](std::size_t done, std::size_t total) {
@@ -127,6 +129,12 @@ CLI::App* addAlignCommand(CLI::App& app, AlignOptions& o) {
       ->capture_default_str();
   cmd->add_option("--keyframe-distance-m", o.keyframe_distance_m,
                   "Import: or after this much motion, metres (0: off)")
+      ->capture_default_str();
+  cmd->add_option("--odometry-sigma-m", o.odometry_sigma_m,
+                  "Import: odometry edge noise between keyframes, metres")
+      ->capture_default_str();
+  cmd->add_option("--odometry-sigma-rad", o.odometry_sigma_rad,
+                  "Import: odometry edge noise between keyframes, radians")
       ->capture_default_str();
   cmd->add_option("--candidates", o.candidates, "Place candidates verified per keyframe")
       ->capture_default_str()->check(CLI::PositiveNumber);

@@ -24,6 +24,8 @@ struct AlignOptions {
   std::string out_dir;  // default with --db: the database's folder
   int keyframe_every = 10;
   double keyframe_distance_m = 0.0;
+  double odometry_sigma_m = 0.01;    // import: odometry edge noise (store/session_import.h)
+  double odometry_sigma_rad = 0.01;
   int candidates = 4;
   double intra_gap_s = 15.0;
   bool no_intra = false;

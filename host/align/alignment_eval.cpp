@@ -170,8 +170,11 @@ AlignmentScore scoreAlignment(const AlignResult& result, const std::vector<Sessi
   for (std::size_t s = 0; s < n && anchor; ++s) {
     const auto T_true = trueT_W_S(s);
     if (!T_true || !result.sessions[s].T_W_S) continue;
+    // Measured at the session's first camera: an offset's translation error depends on where it
+    // is measured, and the odometry origin may lie metres from the data.
+    const Eigen::Isometry3d& T_S_C0 = result.sessions[s].frame_T_S_C.front();
     const Eigen::Isometry3d error =
-        (anchor->inverse() * *T_true).inverse() * *result.sessions[s].T_W_S;
+        (anchor->inverse() * *T_true * T_S_C0).inverse() * *result.sessions[s].T_W_S * T_S_C0;
     score.sessions[s].T_W_S_error_m = error.translation().norm();
     score.sessions[s].T_W_S_error_deg = angleDeg(error.linear());
   }

@@ -32,7 +32,9 @@ struct SessionScore {
   std::size_t frames = 0;
   double ate_after_rmse_m = NAN;   // this session's frames in the common-frame fit
   double ate_drift_rmse_m = NAN;   // the odometry aligned to the truth on its own (drift only)
-  double T_W_S_error_m = NAN, T_W_S_error_deg = NAN;  // vs the truth's, relative to the anchor
+  /// T_W_S against the truth's (relative to the anchor), at the session's first camera: the
+  /// position and orientation error of that camera placed by T_W_S.
+  double T_W_S_error_m = NAN, T_W_S_error_deg = NAN;
 };
 
 struct LoopScore {
