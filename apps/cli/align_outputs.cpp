@@ -1,6 +1,7 @@
 // The files of `strata align`.
 #include "cli/align_outputs.h"
 
+#include <cctype>
 #include <filesystem>
 #include <iomanip>
 #include <map>
@@ -51,8 +52,19 @@ std::string sessionsJson(const align::StoreAlignment& a) {
 }
 
 std::string reasonsJson(const std::vector<std::string>& reasons) {
+  // Grouped by the reason's words: the figures in a reason ("12 below 25") vary per candidate.
   std::map<std::string, std::size_t> counts;
-  for (const std::string& r : reasons) ++counts[r.empty() ? "unspecified" : r];
+  for (const std::string& r : reasons) {
+    std::string key;
+    for (std::size_t i = 0; i < r.size(); ++i) {
+      const bool number = std::isdigit(static_cast<unsigned char>(r[i])) ||
+                          (r[i] == '.' && i + 1 < r.size() &&
+                           std::isdigit(static_cast<unsigned char>(r[i + 1])));
+      if (!number) key += r[i];
+      else if (key.empty() || key.back() != '#') key += '#';
+    }
+    ++counts[key.empty() ? "unspecified" : key];
+  }
   std::ostringstream o;
   o << "{";
   bool first = true;
