@@ -2,19 +2,21 @@
 # Multi-session alignment on every shipped world: 5 simulated sessions per world, odometry drifting
 # in frames of their own (strata sim --drift --own-frames), registered by `strata align`, scored
 # against the simulator's truth (report.json's "truth"). Prints one line per world.
-#   scripts/align-eval.sh [BUILD_DIR] [OUT_DIR] [FRAMES_PER_SESSION]
+#   scripts/align-eval.sh [BUILD_DIR] [OUT_DIR] [FRAMES_PER_SESSION] [extra strata sim options]
+# e.g. --color-texture (the RGB camera sees the world-anchored texture the grey camera sees).
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 BUILD="${1:-$ROOT/build}"
 OUT="${2:-align_eval}"
 FRAMES="${3:-150}"
+SIM_OPTIONS=("${@:4}")
 STRATA="$BUILD/bin/strata"
 mkdir -p "$OUT"
 for world in room office warehouse; do
   sim="$OUT/$world-sim"
   if [[ ! -f "$sim/session_4/odometry.txt" ]]; then
     "$STRATA" sim "$ROOT/worlds/$world.yaml" --sessions 5 --frames "$FRAMES" --drift --own-frames \
-      --out "$sim" > "$OUT/$world-sim.log"
+      "${SIM_OPTIONS[@]}" --out "$sim" > "$OUT/$world-sim.log"
   fi
   rm -rf "$OUT/$world"
   "$STRATA" align "$sim"/session_{0,1,2,3,4} --out "$OUT/$world" --keyframe-every 1 --quiet \

@@ -139,6 +139,9 @@ DemoReport runDemoPipeline(const DemoOptions& o) {
   if (o.vio.enabled && o.align) throw InputError("--align and --vio cannot be combined (yet)");
   const auto world = loadWorld(o.world, o.seed, o.sessions);
   sim::SimSessionConfig config = sessionConfig(30.0, o.frames, !o.no_noise, o.align);
+  // Alignment finds places by ORB corners in the colour images: --align renders them with the
+  // world-anchored texture real surfaces would have (flat shading leaves corners on edges only).
+  if (o.align) config.camera.color_texture = sim::WorldTextureConfig{};
   config.trajectory.rest_at_start_s = o.restSeconds();
   const MapConfig map_config = changeMapConfig(o.voxel_size_m);  // min_weight counts frames
   DiffRunInfo info;

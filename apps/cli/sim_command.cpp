@@ -77,6 +77,9 @@ CLI::App* addSimCommand(CLI::App& app, SimOptions& o) {
   sim->add_option("--rate", o.rate_hz, "Frame rate along the path, Hz")->capture_default_str();
   sim->add_flag("--no-noise", o.no_noise, "Exact depth (16-bit quantisation only)");
   sim->add_flag("--drift", o.drift, "Also write drifted odometry (odometry.txt)");
+  sim->add_flag("--color-texture", o.color_texture,
+                "The RGB camera sees the world-anchored texture the grey camera sees (corners for "
+                "feature detectors, as real surfaces have; default: flat-shaded colour)");
   sim->add_flag("--own-frames", o.own_frames,
                 "Odometry of each session in a random gravity-aligned frame of its own, true "
                 "offset in odometry_frame.txt (implies --drift)");
@@ -108,6 +111,7 @@ int runSim(const SimOptions& o) {
     sim::SimSessionConfig config =
         sessionConfig(o.rate_hz, o.max_frames, !o.no_noise, o.drift || o.own_frames);
     config.trajectory.rest_at_start_s = o.rest_s;
+    if (o.color_texture) config.camera.color_texture = sim::WorldTextureConfig{};
     std::vector<std::unique_ptr<sim::SimSessionDataset>> sessions;
     std::size_t total = 0;
     for (int s = 0; s < world->sessionCount(); ++s) {

@@ -24,6 +24,8 @@ struct SimOptions {
   /// Odometry in a random gravity-aligned frame per session (T_S_C), the true T_W_S beside it in
   /// odometry_frame.txt. Implies drift: an odometry's own frame comes with its drift.
   bool own_frames = false;
+  /// The RGB camera sees the grey camera's world-anchored texture (sensors/rgbd_camera.h).
+  bool color_texture = false;
   bool quiet = false;
   /// > 0: each session's camera rests this long before the path starts (a VIO standstill start;
   /// every stream, RGB-D included, covers the rest).

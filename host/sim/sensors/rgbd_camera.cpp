@@ -34,8 +34,10 @@ float depthAcrossEdge(const DepthImage& depth, int u, int v, double min_jump_m) 
 }
 
 // Ground truth per pixel: exact depth, shaded colour, object id.
-void fillTruthRows(const PixelRayTable& table, const std::vector<RayHit>& hits,
-                   const Lighting& lighting, int begin, int end, SimulatedFrame& out) {
+void fillTruthRows(const PixelRayTable& table, const std::vector<Ray>& rays,
+                   const std::vector<RayHit>& hits, const Lighting& lighting,
+                   const std::optional<WorldTextureConfig>& texture, int begin, int end,
+                   SimulatedFrame& out) {
   const int width = out.depth_true.width_px;
   for (std::size_t i = static_cast<std::size_t>(begin) * width;
        i < static_cast<std::size_t>(end) * width; ++i) {
@@ -43,8 +45,14 @@ void fillTruthRows(const PixelRayTable& table, const std::vector<RayHit>& hits,
     if (!hit.hit()) continue;
     out.depth_true.depth_m[i] = hit.t_m * table.z_per_t[i];  // z = t * d_C.z
     out.object_ids.ids[i] = hit.object_id;
-    const std::array<std::uint8_t, 3> rgb =
-        shade(hit.material.albedo, lighting, hit.normal_W.cast<double>());
+    std::array<std::uint8_t, 3> albedo = hit.material.albedo;
+    if (texture) {
+      const Eigen::Vector3d p_W = (rays[i].origin_W + hit.t_m * rays[i].direction_W).cast<double>();
+      const double factor = worldTexture(*texture, p_W);  // in [1 - contrast, 1]
+      for (std::uint8_t& channel : albedo)
+        channel = static_cast<std::uint8_t>(std::lround(channel * factor));
+    }
+    const std::array<std::uint8_t, 3> rgb = shade(albedo, lighting, hit.normal_W.cast<double>());
     std::copy(rgb.begin(), rgb.end(), out.color.rgb.begin() + 3 * i);
   }
 }
@@ -90,6 +98,7 @@ void RgbdCameraConfig::validate() const {
   }
   if (threads < 0) throw InputError("RgbdCameraConfig: threads must be >= 0 (0 = all cores)");
   noise.validate();
+  if (color_texture) color_texture->validate();
 }
 
 RgbdCamera::RgbdCamera(RgbdCameraConfig config)
@@ -109,7 +118,7 @@ SimulatedFrame RgbdCamera::render(const RayScene& scene, const Eigen::Isometry3d
   SimulatedFrame out{DepthImage(width, height), DepthImage(width, height),
                      ColorImage(width, height), ObjectIdImage(width, height)};
   parallelFor(height, config_.threads, [&](int begin, int end) {
-    fillTruthRows(ray_table_, hits, lighting, begin, end, out);
+    fillTruthRows(ray_table_, rays, hits, lighting, config_.color_texture, begin, end, out);
   });
   // Second pass: flying pixels read neighbouring rows of depth_true.
   parallelFor(height, config_.threads, [&](int begin, int end) {

@@ -3,6 +3,7 @@
 // the structured-light noise model of depth_noise.h.
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "core/types.h"
@@ -11,6 +12,7 @@
 #include "sim/sensors/lighting.h"
 #include "sim/sensors/pinhole_rays.h"
 #include "sim/sensors/sensor_images.h"
+#include "sim/sensors/world_texture.h"
 
 namespace strata::sim {
 
@@ -22,6 +24,10 @@ struct RgbdCameraConfig {
   /// Units per metre of the 16-bit depth format (TUM RGB-D: 5000, i.e. 0.2 mm, up to 13.1 m).
   double depth_scale = 5000.0;
   DepthNoiseConfig noise;
+  /// When set, the colour's albedo is multiplied by this world-anchored texture, as the grey
+  /// camera's is (sensors/grey_camera.h): surfaces then show corners for feature detectors, as
+  /// real ones do. nullopt (the default): flat-shaded colour. Depth never depends on it.
+  std::optional<WorldTextureConfig> color_texture;
   /// Threads for shading and noise (0 = hardware concurrency). Ray casting parallelism is the
   /// scene's own. The output never depends on this.
   int threads = 0;
@@ -36,7 +42,8 @@ struct SimulatedFrame {
   /// Ground truth: exact camera-frame z of the first hit at every pixel that hit anything, no
   /// range limit, no noise, no quantisation; 0 where the ray hit nothing.
   DepthImage depth_true;
-  /// Albedo x Lambert shading of the first hit; black where the ray hit nothing.
+  /// Albedo (x the colour texture when configured) x Lambert shading of the first hit; black
+  /// where the ray hit nothing.
   ColorImage color;
   /// Object id of the first hit (kNoHitObjectId = -1 where none), also where depth dropped out.
   ObjectIdImage object_ids;
