@@ -239,6 +239,32 @@ TEST(SensorRgbd, ColourIsAlbedoTimesLambert) {
   EXPECT_NO_THROW(validateFrame(frame, k));
 }
 
+TEST(SensorRgbd, ColourTextureIsTheWorldTextureTimesTheFlatColourAndLeavesDepthAlone) {
+  AnalyticRayScene scene(1);
+  scene.add(frontoWall(2.0, {200, 100, 50}));
+  const CameraIntrinsics k = smallIntrinsics(64, 48, 40.0f);
+  Lighting light;
+  light.direction_W = Eigen::Vector3d(0, 0, -1);
+  RgbdCameraConfig flat_config = cameraConfig(k, DepthNoiseConfig{});
+  RgbdCameraConfig textured_config = flat_config;
+  textured_config.color_texture = WorldTextureConfig{};
+  const SimulatedFrame flat =
+      RgbdCamera(flat_config).render(scene, Eigen::Isometry3d::Identity(), light, 0);
+  const SimulatedFrame textured =
+      RgbdCamera(textured_config).render(scene, Eigen::Isometry3d::Identity(), light, 0);
+  EXPECT_EQ(flat.depth.depth_m, textured.depth.depth_m);
+  std::set<int> levels;
+  for (std::size_t p = 0; p < flat.color.rgb.size(); p += 3) {
+    ASSERT_LE(textured.color.rgb[p], flat.color.rgb[p]);  // the factor is at most 1
+    levels.insert(textured.color.rgb[p]);
+  }
+  EXPECT_GT(levels.size(), 8u);  // cells of many grey levels, not one flat colour
+  WorldTextureConfig bad;
+  bad.contrast = 2.0;
+  textured_config.color_texture = bad;
+  EXPECT_THROW(RgbdCamera{textured_config}, InputError);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Noise model
 
