@@ -53,6 +53,7 @@ bool normalAt(const VertexImage& image, int u, int v, Eigen::Vector3f& normal) {
   constexpr int s = kNormalStepPx;
   if (u < s || v < s || u + s >= image.width_px || v + s >= image.height_px) return false;
   const Eigen::Vector3f& centre = image.at(u, v);
+  if (!std::isfinite(centre.z())) return false;  // a hole: no vertex to associate with
   const Eigen::Vector3f* around[4] = {&image.at(u - s, v), &image.at(u + s, v), &image.at(u, v - s),
                                       &image.at(u, v + s)};
   for (const Eigen::Vector3f* p : around) {
@@ -114,6 +115,7 @@ NormalEquations associate(const std::vector<SamplePoint>& points_b, const Vertex
     if (!normalAt(a, u, v, n_a_f)) continue;
     const Eigen::Vector3d n_a = n_a_f.cast<double>();
     const Eigen::Vector3d d = q - a.at(u, v).cast<double>();
+    if (!d.allFinite() || !n_a.allFinite()) continue;  // a pixel without depth has no vertex
     if (d.norm() > config.max_distance_m || n_a.dot(R * s.n_b) < min_cos) continue;
     const double r = n_a.dot(d);
     // d r / d delta for T_a_b * Exp(delta): translation R^T n_a, rotation p_b x (R^T n_a).

@@ -133,6 +133,10 @@ void refineWithIcp(const VerifyKeyframe& a, const VerifyKeyframe& b, const Verif
     m.reason = "ICP found too few correspondences between the depth images";
     return;
   }
+  if (!std::isfinite(r.rms_m) || !r.JtJ.allFinite() || !r.T_a_b.matrix().allFinite()) {
+    m.reason = "ICP diverged (a non-finite pose or residual)";
+    return;
+  }
   const double correction_m = (r.T_a_b.translation() - m.T_a_b.translation()).norm();
   m.T_a_b = r.T_a_b;
   m.residual_m = r.rms_m;

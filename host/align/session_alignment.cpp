@@ -152,6 +152,11 @@ AlignResult alignSessions(const std::vector<AlignSession>& sessions, const Align
       result.rejection_reasons.push_back(measured[j].reason);
       continue;
     }
+    if (!measured[j].T_a_b.matrix().allFinite() || !measured[j].information.allFinite()) {
+      // Never expected of the verifier; a loop the graph would refuse must not end the run.
+      result.rejection_reasons.push_back("non-finite measurement");
+      continue;
+    }
     const detail::LoadedKeyframe& a = keyframes[candidates[j].a];
     const detail::LoadedKeyframe& b = keyframes[candidates[j].b];
     AlignLoop loop{a.session, a.keyframe, b.session, b.keyframe, measured[j], candidates[j].score};
