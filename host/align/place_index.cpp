@@ -51,9 +51,23 @@ Neighbours exactNeighbours(const std::vector<Descriptor>& indexed, const Descrip
   return best;
 }
 
+
+/// At most config.max_descriptors_per_keyframe descriptors, evenly strided through the list.
+std::vector<Descriptor> sampled(const std::vector<Descriptor>& all, const PlaceIndexConfig& config) {
+  const std::size_t limit = static_cast<std::size_t>(config.max_descriptors_per_keyframe);
+  if (limit == 0 || all.size() <= limit) return all;
+  std::vector<Descriptor> out;
+  out.reserve(limit);
+  for (std::size_t i = 0; i < limit; ++i) out.push_back(all[i * all.size() / limit]);
+  return out;
+}
+
 }  // namespace
 
 void PlaceIndexConfig::validate() const {
+  if (max_descriptors_per_keyframe < 0) {
+    throw InputError("PlaceIndexConfig: max_descriptors_per_keyframe must be >= 0 (0: all)");
+  }
   if (neighbours < 1) throw InputError("PlaceIndexConfig: neighbours must be >= 1");
   if (max_hamming_distance < 0 || max_hamming_distance > 256) {
     throw InputError("PlaceIndexConfig: max_hamming_distance must be in [0, 256]");
@@ -115,14 +129,15 @@ void PlaceIndex::add(std::size_t keyframe, const KeyframeFeatures& features) {
                      std::to_string(features.size()) + " keypoints but " +
                      std::to_string(features.descriptors.size()) + " descriptors");
   }
-  impl_->reserve(features.descriptors.size());
-  for (const Descriptor& d : features.descriptors) {
+  const std::vector<Descriptor> used = sampled(features.descriptors, impl_->config);
+  impl_->reserve(used.size());
+  for (const Descriptor& d : used) {
     const std::size_t label = impl_->descriptors.size();
     if (impl_->hnsw) impl_->hnsw->addPoint(d.data(), label);
     impl_->descriptors.push_back(d);
     impl_->keyframe_of.push_back(keyframe);
   }
-  impl_->feature_count[keyframe] = features.descriptors.size();
+  impl_->feature_count[keyframe] = used.size();
 }
 
 std::size_t PlaceIndex::keyframes() const { return impl_->feature_count.size(); }
@@ -136,7 +151,8 @@ std::vector<PlaceCandidate> PlaceIndex::query(
   // Each query descriptor votes once for every keyframe among its near neighbours.
   std::unordered_map<std::size_t, int> votes;
   std::unordered_set<std::size_t> voted;
-  for (const Descriptor& d : features.descriptors) {
+  const std::vector<Descriptor> used = sampled(features.descriptors, impl_->config);
+  for (const Descriptor& d : used) {
     voted.clear();
     for (const auto& [distance, label] : impl_->neighbours(d)) {
       if (distance > impl_->config.max_hamming_distance) continue;
@@ -146,7 +162,7 @@ std::vector<PlaceCandidate> PlaceIndex::query(
   }
 
   std::vector<PlaceCandidate> candidates;
-  const double query_count = static_cast<double>(features.descriptors.size());
+  const double query_count = static_cast<double>(used.size());
   for (const auto& [keyframe, count] : votes) {
     if (count < min_votes || (admissible && !admissible(keyframe))) continue;
     const double indexed_count = static_cast<double>(impl_->feature_count.at(keyframe));

@@ -21,6 +21,10 @@ struct PlaceIndexConfig {
   int hnsw_ef_construction = 100;
   int hnsw_ef_search = 64;
   bool exact = false;              // brute-force search instead of HNSW (recall reference)
+  /// Descriptors a keyframe adds and queries with, at most (an even stride through its list;
+  /// 0: all). Voting needs a few hundred; each one more costs an HNSW search per query and a
+  /// node in the graph (textured scenes give ORB's full 1000 per keyframe).
+  int max_descriptors_per_keyframe = 300;
   void validate() const;
 };
 
