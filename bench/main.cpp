@@ -10,6 +10,7 @@
 #include "lcm_command.h"
 #include "select_command.h"
 #include "occupancy_command.h"
+#include "align_command.h"
 #include "posegraph_command.h"
 #include "sim_command.h"
 #include "soak_command.h"
@@ -41,6 +42,8 @@ int main(int argc, char** argv) {
   CLI::App* track = strata::bench::addTrackCommand(app, track_options);
   strata::bench::FrontendBenchOptions frontend_options;
   CLI::App* frontend = strata::bench::addFrontendCommand(app, frontend_options);
+  strata::bench::AlignBenchOptions align_options;
+  CLI::App* align = strata::bench::addAlignCommand(app, align_options);
   strata::bench::PoseGraphBenchOptions posegraph_options;
   CLI::App* posegraph = strata::bench::addPoseGraphCommand(app, posegraph_options);
   strata::bench::AllBenchOptions all_options;
@@ -62,6 +65,7 @@ int main(int argc, char** argv) {
   if (track->parsed()) return strata::bench::runTrackBench(track_options);
   if (frontend->parsed()) return strata::bench::runFrontendBench(frontend_options);
   if (posegraph->parsed()) return strata::bench::runPoseGraphBench(posegraph_options);
+  if (align->parsed()) return strata::bench::runAlignBench(align_options);
   if (all->parsed()) return strata::bench::runAllBench(all_options);
   return 2;
 }
