@@ -4,9 +4,13 @@
 // files changed since the import refused.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include "align/store_alignment.h"
+#include "cli/align_command.h"
 #include "core/error.h"
 #include "io/odometry_frame_file.h"
 #include "sim/session/drifted_session.h"
@@ -114,6 +118,63 @@ TEST(AlignStore, ASessionWhoseFolderIsGoneIsRefusedAndTheStoreKeptAsItWas) {
   for (const store::SessionRecord& s : db->sessions()) EXPECT_FALSE(s.aligned);
   EXPECT_TRUE(db->edges(store::EdgeKind::kLoop).empty());
   fs::remove_all(split.root);
+}
+
+std::string readText(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+TEST(AlignCli, WritesTrajectoriesLoopsReportAndPictureAndScoresAgainstTheTruth) {
+  STRATA_REQUIRE_DATA("redkitchen", kitchen);
+  const SplitKitchen split = splitKitchen(kitchen, "align_cli");
+  apps::AlignOptions o;
+  o.session_dirs = {split.anchor.string(), split.drifted.string()};
+  o.out_dir = (split.root / "out").string();
+  o.keyframe_every = 3;
+  o.quiet = true;
+  ASSERT_EQ(apps::runAlign(o), 0);
+  const fs::path out = split.root / "out";
+  for (const char* file : {"map.sqlite", "loops.csv", "report.json", "trajectories.png",
+                           "session_0/trajectory.txt", "session_1/trajectory.txt"}) {
+    EXPECT_TRUE(fs::exists(out / file)) << file;
+  }
+  const std::string report = readText(out / "report.json");
+  EXPECT_NE(report.find("\"aligned_sessions\": 2"), std::string::npos) << report;
+  EXPECT_NE(report.find("\"loops_accepted_false\": 0"), std::string::npos) << report;
+  // 75 frames per session, one line each after the header.
+  const std::string trajectory = readText(out / "session_1/trajectory.txt");
+  EXPECT_EQ(std::count(trajectory.begin(), trajectory.end(), '\n'), 76);
+  const std::string loops = readText(out / "loops.csv");
+  EXPECT_GT(std::count(loops.begin(), loops.end(), '\n'), 10);
+  EXPECT_NE(loops.find("true_loop"), std::string::npos);  // scored against groundtruth.txt
+
+  // Running again on the database alone replaces the result in place.
+  apps::AlignOptions again;
+  again.db_path = (out / "map.sqlite").string();
+  again.quiet = true;
+  EXPECT_EQ(apps::runAlign(again), 0);
+  fs::remove_all(split.root);
+}
+
+TEST(AlignCli, BadInputExitsTwoNamingTheProblem) {
+  apps::AlignOptions none;
+  EXPECT_EQ(apps::runAlign(none), 2);  // neither folders nor --db
+  const fs::path root = test::freshStoreDir("align_cli_bad");
+  apps::AlignOptions missing;
+  missing.session_dirs = {(root / "no_such_session").string()};
+  missing.out_dir = (root / "out").string();
+  missing.quiet = true;
+  EXPECT_EQ(apps::runAlign(missing), 2);
+  apps::AlignOptions no_db;
+  no_db.db_path = (root / "absent.sqlite").string();
+  EXPECT_EQ(apps::runAlign(no_db), 2);
+  apps::AlignOptions no_out;
+  no_out.session_dirs = {root.string()};
+  EXPECT_EQ(apps::runAlign(no_out), 2);  // folders need --out
+  fs::remove_all(root);
 }
 
 }  // namespace
