@@ -14,6 +14,7 @@ PACKAGES=(
   libceres-dev
   libsqlite3-dev
   libhnswlib-dev
+  libpcl-dev
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

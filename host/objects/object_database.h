@@ -1,0 +1,87 @@
+#pragma once
+// The incremental object database (docs/objects.md; Furrer, Fehr et al. IROS 2018): the objects
+// that moved, kept as TSDF models that grow more complete with every session they are seen in.
+//
+// addSession(), per discovered segment of the session, largest first:
+//   observeObject -> prefilter candidates (size, colour) -> registerSurfaces against each
+//   candidate -> checkConsistency of the registered pose -> the candidate with the best score
+//   (fitness x agreement) among those accepted takes the observation: merged into its TSDF
+//   (weighted SDF average) and an instance added; none accepted: a new model. Degenerate segments
+//   are skipped with the reason recorded. Several segments of one session may join one model
+//   (identical shapes: the database stores shapes and their instances).
+// Thread safety: not thread safe; one ObjectDatabase per thread.
+#include <string>
+#include <vector>
+
+#include "change/objects.h"
+#include "map/tsdf_map.h"
+#include "mesh/mesh.h"
+#include "objects/consistency_check.h"
+#include "objects/object_model.h"
+#include "objects/object_observation.h"
+#include "objects/object_prefilter.h"
+#include "objects/object_registration.h"
+
+namespace strata::objects {
+
+struct DatabaseConfig {
+  ObservationConfig observation;
+  RegistrationConfig registration;  // its voxel_size_m is set from the session map
+  ConsistencyConfig consistency;
+  PrefilterConfig prefilter;
+  ObjectModelConfig model;
+  /// Merge an accepted observation into the model (false: only record the instance).
+  bool merge = true;
+  void validate() const;  // InputError naming the bad field
+};
+
+/// What happened to one segment.
+struct SegmentOutcome {
+  int session = 0;
+  int segment_id = 0;
+  int model_id = 0;        // 0: skipped
+  bool new_model = false;
+  std::string skipped;     // why it was skipped ("" otherwise)
+  int candidates = 0;      // models the prefilter let through
+  int registrations = 0;   // of those, registered
+  double score = 0.0;      // of the accepted match (1 for a new model)
+  RegistrationResult registration;  // of the accepted match
+  ConsistencyResult consistency;    // of the accepted match
+  std::string refused;     // summary of the candidates refused and why ("" when none)
+  double ms = 0.0;         // observation + matching + merge
+};
+
+class ObjectDatabase {
+ public:
+  explicit ObjectDatabase(const DatabaseConfig& config = {});
+
+  /// Adds one session's discovered objects. `session_map` is the session's own layer (world
+  /// frame), `surface` its labelled surface (as extractObjects returns it), `segments` its
+  /// discovered objects. Sessions may come in any order; a session already added is an
+  /// InputError (nothing changes). Voxel sizes must agree across sessions (InputError).
+  std::vector<SegmentOutcome> addSession(int session, const TsdfMap& session_map,
+                                         const change::LabelledSurface& surface,
+                                         const std::vector<change::DiscoveredObject>& segments);
+
+  const std::vector<ObjectModel>& models() const { return models_; }
+  const ObjectModel* findModel(int id) const;
+  const DatabaseConfig& config() const { return config_; }
+  std::vector<int> sessions() const { return sessions_; }
+
+  /// Every model placed at its instances of `session`, world frame, one mesh (coloured by the
+  /// model's TSDF colour).
+  Mesh sessionObjects(int session) const;
+
+  /// For the file reader: a database with these models and sessions (ids kept).
+  static ObjectDatabase fromParts(const DatabaseConfig& config, std::vector<ObjectModel> models,
+                                  std::vector<int> sessions);
+
+ private:
+  DatabaseConfig config_;
+  std::vector<ObjectModel> models_;
+  std::vector<int> sessions_;
+  ModelPrefilter prefilter_;
+  int next_id_ = 1;
+};
+
+}  // namespace strata::objects

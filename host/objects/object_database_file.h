@@ -1,0 +1,39 @@
+#pragma once
+// The object database on disk: a versioned binary file (".objects", docs/objects.md has the
+// layout), and the same bytes as one row of the session store when the map lives there.
+//
+// Format version 1: magic "STRATAOBJ", u32 version, u32 payload bytes, u64 FNV-1a of the payload,
+// then the payload (little endian): the config's voxel sizes, sessions, models (id, instances,
+// TSDF blocks: index + 512 voxels). Meshes and samples are derived and rebuilt on load.
+// Errors: InputError naming the file for a missing, truncated, corrupt (checksum) or foreign
+// file, and for a newer version ("written by format version 3; this build reads up to 1");
+// Error for a failed write. Writes are atomic (temporary file in the same folder, fsync, rename):
+// a failure leaves the previous file as it was.
+// Thread safety: free functions.
+#include <string>
+
+#include "objects/object_database.h"
+
+namespace strata::store {
+class Store;
+}
+
+namespace strata::objects {
+
+inline constexpr unsigned kObjectDatabaseFormatVersion = 1;
+
+std::string serializeObjectDatabase(const ObjectDatabase& database);
+/// `name` names the source in errors.
+ObjectDatabase deserializeObjectDatabase(const std::string& bytes, const std::string& name,
+                                         const DatabaseConfig& config = {});
+
+void saveObjectDatabase(const ObjectDatabase& database, const std::string& path);
+ObjectDatabase loadObjectDatabase(const std::string& path, const DatabaseConfig& config = {});
+
+/// The store's copy: one row (table object_database), replaced in one transaction.
+void saveObjectDatabase(const ObjectDatabase& database, store::Store& store);
+/// nullopt-like: returns false when the store holds none.
+bool loadObjectDatabase(store::Store& store, ObjectDatabase& database,
+                        const DatabaseConfig& config = {});
+
+}  // namespace strata::objects
