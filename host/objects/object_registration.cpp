@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <vector>
 
@@ -38,6 +39,12 @@ using Features = pcl::PointCloud<pcl::FPFHSignature33>;
 /// best few refined by ICP: enough for a symmetric object's two or four equivalent poses.
 constexpr std::size_t kHypothesesScored = 8;
 constexpr std::size_t kHypothesesRefined = 3;
+
+std::string degrees(double value) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.1f deg", value);
+  return text;
+}
 
 void requireCloud(const SurfaceCloud& cloud, const char* which) {
   if (cloud.empty()) {
@@ -192,17 +199,16 @@ Eigen::Matrix4f pointToPlaneStep(const Cloud& moved, const Cloud& target,
   return step.cast<float>();
 }
 
-/// Point-to-plane ICP: PCL's correspondence search (kd-tree), pairs with compatible normals,
-/// Gauss-Newton steps as above until they fall below 10 um and 10 urad.
-Eigen::Matrix4f refineIcp(const Cloud::Ptr& source, const Cloud::Ptr& target,
-                          const Eigen::Matrix4f& guess, const RegistrationConfig& config) {
-  pcl::registration::CorrespondenceEstimation<pcl::PointNormal, pcl::PointNormal, float> search;
-  search.setInputTarget(target);
-  const double max_distance_m = config.icp_max_distance_voxels * config.voxel_size_m;
+/// Point-to-plane ICP: PCL's correspondence search (kd-tree), pairs within `max_distance_m` with
+/// compatible normals, Gauss-Newton steps as above until they fall below 10 um and 10 urad.
+Eigen::Matrix4f iterateIcp(
+    pcl::registration::CorrespondenceEstimation<pcl::PointNormal, pcl::PointNormal, float>& search,
+    const Cloud::Ptr& source, const Cloud::Ptr& target, const Eigen::Matrix4f& guess,
+    double max_distance_m, int iterations) {
   Eigen::Matrix4f T = guess;
   Cloud::Ptr moved(new Cloud);
   pcl::Correspondences pairs;
-  for (int iteration = 0; iteration < config.icp_iterations; ++iteration) {
+  for (int iteration = 0; iteration < iterations; ++iteration) {
     pcl::transformPointCloudWithNormals(*source, *moved, T);
     search.setInputSource(moved);
     search.determineCorrespondences(pairs, max_distance_m);
@@ -216,6 +222,21 @@ Eigen::Matrix4f refineIcp(const Cloud::Ptr& source, const Cloud::Ptr& target,
     if (step.topRightCorner<3, 1>().norm() < 1e-5f && turned < 1e-5f) break;
   }
   return T;
+}
+
+/// Coarse then fine ICP from a RANSAC hypothesis. NOTE: the coarse stage (wide correspondence
+/// distance) matters on partial views: there the fine stage alone leaves the directions few
+/// planes constrain where the hypothesis put them (1-2 cm off on chairs seen from 90 deg apart,
+/// within 6 mm with the coarse stage).
+Eigen::Matrix4f refineIcp(const Cloud::Ptr& source, const Cloud::Ptr& target,
+                          const Eigen::Matrix4f& guess, const RegistrationConfig& config) {
+  pcl::registration::CorrespondenceEstimation<pcl::PointNormal, pcl::PointNormal, float> search;
+  search.setInputTarget(target);
+  const Eigen::Matrix4f coarse =
+      iterateIcp(search, source, target, guess,
+                 config.icp_coarse_distance_voxels * config.voxel_size_m, config.icp_iterations);
+  return iterateIcp(search, source, target, coarse,
+                    config.icp_max_distance_voxels * config.voxel_size_m, config.icp_iterations);
 }
 
 }  // namespace
@@ -234,6 +255,8 @@ void RegistrationConfig::validate() const {
           "must be in [0, 1)");
   require(icp_iterations >= 0, "icp_iterations", "must be >= 0");
   require(icp_max_distance_voxels > 0.0f, "icp_max_distance_voxels", "must be > 0");
+  require(icp_coarse_distance_voxels >= icp_max_distance_voxels, "icp_coarse_distance_voxels",
+          "must be >= icp_max_distance_voxels");
   require(max_tilt_deg > 0.0f && max_tilt_deg <= 180.0f, "max_tilt_deg", "must be in (0, 180]");
 }
 
@@ -261,8 +284,8 @@ RegistrationResult registerSurfaces(const SurfaceCloud& source, const SurfaceClo
     const std::vector<Hypothesis> hypotheses =
         ransacUpright(source.points, target.points, matches, config, kHypothesesScored);
     if (hypotheses.empty()) {
-      return finish("no RANSAC hypothesis within " + std::to_string(config.max_tilt_deg) +
-                    " deg of upright from " + std::to_string(matches.size()) +
+      return finish("no RANSAC hypothesis within " + degrees(config.max_tilt_deg) +
+                    " of upright from " + std::to_string(matches.size()) +
                     " feature correspondences");
     }
     pcl::KdTreeFLANN<pcl::PointNormal> target_tree;
@@ -288,8 +311,7 @@ RegistrationResult registerSurfaces(const SurfaceCloud& source, const SurfaceClo
       }
     }
     if (!have_best) {
-      return finish("ICP tilted every hypothesis by more than " +
-                    std::to_string(config.max_tilt_deg) + " deg");
+      return finish("ICP tilted every hypothesis by more than " + degrees(config.max_tilt_deg));
     }
     result.T_target_source.matrix() = best_T.cast<double>();
     result.fitness = best_fit.fitness;
