@@ -53,6 +53,9 @@ TEST(ObjectDatabase, OneObjectInThreeSessionsAndABoxMakeTwoModels) {
   ASSERT_EQ(box.instances.size(), 1u);
   EXPECT_EQ(box.instances[0].session, 2);
   EXPECT_EQ(l.merged_observations, 3);
+  // The L seen from behind is refused by the box model (by its consistency check or its score).
+  const SegmentOutcome& third = f.outcomes[2][0];
+  EXPECT_NE(third.refused.find("model 2: "), std::string::npos) << third.refused;
 
   // Where the L stood: each instance against the truth relative to the founding one.
   const ObjectInstance* first = instanceOf(l, 1);
@@ -139,9 +142,33 @@ TEST(ObjectDatabase, AddingASessionTwiceIsRefusedAndChangesNothing) {
   EXPECT_EQ(database.models()[0].instances.size(), 1u);
 }
 
+TEST(ObjectDatabase, MatchesBelowTheMinimumScoreFoundNewModels) {
+  const Session first = makeSession({kL1}, 1);
+  const Session behind = makeSession({kL3}, 3);  // scores about 0.77 against the first
+  for (const float min_score : {0.5f, 0.9f}) {
+    DatabaseConfig config;
+    config.min_match_score = min_score;
+    ObjectDatabase database(config);
+    database.addSession(1, first.map, first.surface, first.segments);
+    const std::vector<SegmentOutcome> outcomes =
+        database.addSession(3, behind.map, behind.surface, behind.segments);
+    ASSERT_EQ(outcomes.size(), 1u);
+    if (min_score < 0.7f) {
+      EXPECT_EQ(database.models().size(), 1u) << outcomes[0].refused;
+    } else {
+      EXPECT_EQ(database.models().size(), 2u);
+      EXPECT_NE(outcomes[0].refused.find("< min_match_score"), std::string::npos)
+          << outcomes[0].refused;
+    }
+  }
+}
+
 TEST(ObjectDatabase, ConfigIsValidated) {
   DatabaseConfig config;
   config.registration.ransac_iterations = 0;
+  EXPECT_THROW(ObjectDatabase{config}, InputError);
+  config = DatabaseConfig{};
+  config.min_match_score = 1.5f;
   EXPECT_THROW(ObjectDatabase{config}, InputError);
 }
 

@@ -55,6 +55,10 @@ void appendPlaced(const Mesh& mesh, const Eigen::Isometry3d& T_W_M, Mesh& out) {
 }  // namespace
 
 void DatabaseConfig::validate() const {
+  if (!(min_match_score >= 0.0f && min_match_score <= 1.0f)) {
+    throw InputError("DatabaseConfig.min_match_score must be in [0, 1], got " +
+                     std::to_string(min_match_score));
+  }
   observation.validate();
   registration.validate();
   consistency.validate();
@@ -152,6 +156,7 @@ ObjectDatabase::Match ObjectDatabase::bestMatch(const ObjectObservation& observa
                                                 const TsdfMap& session_map,
                                                 SegmentOutcome& outcome) const {
   Match best;
+  std::vector<std::pair<int, double>> accepted;  // model id, score
   const std::vector<int> candidates =
       prefilter_.candidates(observation.extent_m, observation.mean_color);
   outcome.candidates = static_cast<int>(candidates.size());
@@ -172,7 +177,25 @@ ObjectDatabase::Match ObjectDatabase::bestMatch(const ObjectObservation& observa
       continue;
     }
     const double score = registration.fitness * consistency.agreement;
+    if (score < config_.min_match_score) {
+      appendRefusal(outcome.refused, id,
+                    "score " + std::to_string(score) + " (fitness " +
+                        std::to_string(registration.fitness) + " x agreement " +
+                        std::to_string(consistency.agreement) + ") < min_match_score " +
+                        std::to_string(config_.min_match_score));
+      continue;
+    }
+    accepted.emplace_back(id, score);
     if (score > best.score) best = {id, score, registration, consistency};
+  }
+  // Accepted but outscored candidates are reported too: two models that both accept one
+  // observation are near duplicates (or identical shapes) worth knowing about.
+  for (const auto& [id, score] : accepted) {
+    if (id != best.model_id) {
+      appendRefusal(outcome.refused, id,
+                    "accepted but outscored (" + std::to_string(score) + " < " +
+                        std::to_string(best.score) + ")");
+    }
   }
   return best;
 }

@@ -30,6 +30,11 @@ struct DatabaseConfig {
   ConsistencyConfig consistency;
   PrefilterConfig prefilter;
   ObjectModelConfig model;
+  /// Matches scoring lower (registration fitness x SDF agreement) are refused: an observation
+  /// with less than about half its surface on the model is more often another object that the
+  /// consistency check let through (a box accepting an L seen from behind scores 0.37) than a new
+  /// side of the same one (0.77 for that L's own model). 0 disables.
+  float min_match_score = 0.5f;
   /// Merge an accepted observation into the model (false: only record the instance).
   bool merge = true;
   void validate() const;  // InputError naming the bad field
