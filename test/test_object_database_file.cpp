@@ -173,6 +173,14 @@ TEST(ObjectDatabaseFile, StoreCopyRoundTrips) {
   ObjectDatabase loaded;
   ASSERT_TRUE(loadObjectDatabase(store, loaded));
   expectSameDatabase(database, loaded);
+  // A copy written by a newer build is refused naming the map and both versions.
+  const std::optional<store::ObjectDatabaseBlob> blob = store.objectDatabase();
+  ASSERT_TRUE(blob.has_value());
+  store.setObjectDatabase({2, blob->bytes});
+  const std::string message = inputErrorOf([&] { loadObjectDatabase(store, loaded); });
+  EXPECT_NE(message.find(path.string()), std::string::npos) << message;
+  EXPECT_NE(message.find("format version 2; this build reads up to 1"), std::string::npos)
+      << message;
   fs::remove_all(dir);
 }
 

@@ -22,6 +22,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -239,6 +240,34 @@ Eigen::Matrix4f refineIcp(const Cloud::Ptr& source, const Cloud::Ptr& target,
                     config.icp_max_distance_voxels * config.voxel_size_m, config.icp_iterations);
 }
 
+/// The hypotheses scored on the whole clouds; the best few refined by ICP; of those, the best
+/// fit that stays upright. nullopt when ICP tilted all of them.
+struct Refined {
+  Eigen::Matrix4f T;
+  Fit fit;
+};
+std::optional<Refined> refineBest(const Cloud::Ptr& source, const Cloud::Ptr& target,
+                                  const std::vector<Hypothesis>& hypotheses,
+                                  const RegistrationConfig& config) {
+  pcl::KdTreeFLANN<pcl::PointNormal> target_tree;
+  target_tree.setInputCloud(target);
+  const float inlier_m = config.inlier_distance_voxels * config.voxel_size_m;
+  std::vector<std::pair<double, Eigen::Matrix4f>> scored;
+  for (const Hypothesis& h : hypotheses) {
+    scored.emplace_back(scoreFit(*source, target_tree, h.T, inlier_m).fitness, h.T);
+  }
+  std::stable_sort(scored.begin(), scored.end(),
+                   [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::optional<Refined> best;
+  for (std::size_t i = 0; i < std::min(kHypothesesRefined, scored.size()); ++i) {
+    const Eigen::Matrix4f T = refineIcp(source, target, scored[i].second, config);
+    if (tiltDeg(T) > config.max_tilt_deg) continue;
+    const Fit fit = scoreFit(*source, target_tree, T, inlier_m);
+    if (!best || fit.fitness > best->fit.fitness) best = Refined{T, fit};
+  }
+  return best;
+}
+
 }  // namespace
 
 void RegistrationConfig::validate() const {
@@ -288,31 +317,12 @@ RegistrationResult registerSurfaces(const SurfaceCloud& source, const SurfaceClo
                     " of upright from " + std::to_string(matches.size()) +
                     " feature correspondences");
     }
-    pcl::KdTreeFLANN<pcl::PointNormal> target_tree;
-    target_tree.setInputCloud(target_pcl);
-    const float inlier_m = config.inlier_distance_voxels * config.voxel_size_m;
-    std::vector<std::pair<double, Eigen::Matrix4f>> scored;
-    for (const Hypothesis& h : hypotheses) {
-      scored.emplace_back(scoreFit(*source_pcl, target_tree, h.T, inlier_m).fitness, h.T);
-    }
-    std::stable_sort(scored.begin(), scored.end(),
-                     [](const auto& a, const auto& b) { return a.first > b.first; });
-    Fit best_fit;
-    Eigen::Matrix4f best_T = Eigen::Matrix4f::Identity();
-    bool have_best = false;
-    for (std::size_t i = 0; i < std::min(kHypothesesRefined, scored.size()); ++i) {
-      const Eigen::Matrix4f T = refineIcp(source_pcl, target_pcl, scored[i].second, config);
-      if (tiltDeg(T) > config.max_tilt_deg) continue;
-      const Fit fit = scoreFit(*source_pcl, target_tree, T, inlier_m);
-      if (!have_best || fit.fitness > best_fit.fitness) {
-        best_fit = fit;
-        best_T = T;
-        have_best = true;
-      }
-    }
-    if (!have_best) {
+    const std::optional<Refined> best = refineBest(source_pcl, target_pcl, hypotheses, config);
+    if (!best) {
       return finish("ICP tilted every hypothesis by more than " + degrees(config.max_tilt_deg));
     }
+    const Eigen::Matrix4f& best_T = best->T;
+    const Fit& best_fit = best->fit;
     result.T_target_source.matrix() = best_T.cast<double>();
     result.fitness = best_fit.fitness;
     result.rmse_m = best_fit.rmse_m;
