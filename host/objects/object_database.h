@@ -30,6 +30,11 @@ struct DatabaseConfig {
   ConsistencyConfig consistency;
   PrefilterConfig prefilter;
   ObjectModelConfig model;
+  /// Matches scoring lower (registration fitness x SDF agreement) are refused: an observation
+  /// with less than about half its surface on the model is more often another object that the
+  /// consistency check let through (a box accepting an L seen from behind scores 0.37) than a new
+  /// side of the same one (0.77 for that L's own model). 0 disables.
+  float min_match_score = 0.5f;
   /// Merge an accepted observation into the model (false: only record the instance).
   bool merge = true;
   void validate() const;  // InputError naming the bad field
@@ -39,16 +44,16 @@ struct DatabaseConfig {
 struct SegmentOutcome {
   int session = 0;
   int segment_id = 0;
-  int model_id = 0;        // 0: skipped
+  int model_id = 0;  // 0: skipped
   bool new_model = false;
-  std::string skipped;     // why it was skipped ("" otherwise)
-  int candidates = 0;      // models the prefilter let through
-  int registrations = 0;   // of those, registered
-  double score = 0.0;      // of the accepted match (1 for a new model)
+  std::string skipped;              // why it was skipped ("" otherwise)
+  int candidates = 0;               // models the prefilter let through
+  int registrations = 0;            // of those, registered
+  double score = 0.0;               // of the accepted match (1 for a new model)
   RegistrationResult registration;  // of the accepted match
   ConsistencyResult consistency;    // of the accepted match
-  std::string refused;     // summary of the candidates refused and why ("" when none)
-  double ms = 0.0;         // observation + matching + merge
+  std::string refused;              // summary of the candidates refused and why ("" when none)
+  double ms = 0.0;                  // observation + matching + merge
 };
 
 class ObjectDatabase {
@@ -77,6 +82,19 @@ class ObjectDatabase {
                                   std::vector<int> sessions);
 
  private:
+  /// The best accepted candidate of one segment (model_id 0: none).
+  struct Match {
+    int model_id = 0;
+    double score = 0.0;
+    RegistrationResult registration;
+    ConsistencyResult consistency;
+  };
+  SegmentOutcome addSegment(int session, const TsdfMap& session_map,
+                            const change::LabelledSurface& surface,
+                            const change::DiscoveredObject& segment);
+  Match bestMatch(const ObjectObservation& observation, const TsdfMap& session_map,
+                  SegmentOutcome& outcome) const;
+
   DatabaseConfig config_;
   std::vector<ObjectModel> models_;
   std::vector<int> sessions_;

@@ -1,6 +1,7 @@
 #pragma once
-// Registration of an observation's surface onto a model's: global (keypoints, FPFH descriptors,
-// correspondence rejection, RANSAC over the correspondences) then local (point-to-plane ICP).
+// Registration of an observation's surface onto a model's: global (FPFH descriptors of every
+// sample, nearest-descriptor correspondences, RANSAC over them refusing tilted hypotheses) then
+// local (point-to-plane ICP, coarse then fine). Deterministic for a seed.
 // Built on PCL (Debian libpcl-dev); docs/objects.md says why PCL and which of its classes.
 // Everything PCL stays in the .cpp files: callers see Eigen and SurfaceCloud only.
 // Thread safety: free function, no shared state (PCL objects are local to the call).
@@ -13,28 +14,31 @@
 namespace strata::objects {
 
 struct RegistrationConfig {
-  float voxel_size_m = 0.02f;          // of the clouds; radii below are in these voxels
-  float normal_radius_voxels = 2.5f;   // (normals come with the clouds; kept for keypoints)
-  float feature_radius_voxels = 5.0f;  // FPFH support
-  float inlier_distance_voxels = 1.5f; // RANSAC and fitness inlier bound
+  float voxel_size_m = 0.02f;           // of the clouds; radii below are in these voxels
+  float normal_radius_voxels = 2.5f;    // (normals come with the clouds; kept for keypoints)
+  float feature_radius_voxels = 5.0f;   // FPFH support
+  float inlier_distance_voxels = 1.5f;  // RANSAC and fitness inlier bound
   int ransac_iterations = 20000;
   int ransac_samples = 3;
-  float edge_similarity = 0.9f;        // polygon rejection of sample sets
+  float edge_similarity = 0.9f;  // polygon rejection of sample sets
   int icp_iterations = 30;
   float icp_max_distance_voxels = 2.0f;
+  /// A first ICP stage pairs points this far apart: it pulls a RANSAC hypothesis into the fine
+  /// stage's reach along directions few planes of a partial view constrain. Wider costs time.
+  float icp_coarse_distance_voxels = 8.0f;
   /// Rotations about the world's vertical only (objects stand on the floor): RANSAC hypotheses
   /// that tilt the object by more than this are refused. 180 disables.
   float max_tilt_deg = 10.0f;
-  std::uint32_t seed = 1;              // RANSAC is deterministic for a given seed
-  void validate() const;  // InputError naming the bad field
+  std::uint32_t seed = 1;  // RANSAC is deterministic for a given seed
+  void validate() const;   // InputError naming the bad field
 };
 
 struct RegistrationResult {
   bool converged = false;
   std::string reason;  // "" when converged, else why not
   Eigen::Isometry3d T_target_source = Eigen::Isometry3d::Identity();
-  double fitness = 0.0;   // share of source points within the inlier distance after ICP
-  double rmse_m = 0.0;    // of those inliers
+  double fitness = 0.0;     // share of source points within the inlier distance after ICP
+  double rmse_m = 0.0;      // of those inliers
   int correspondences = 0;  // feature correspondences RANSAC started from
   double ms = 0.0;
 };
