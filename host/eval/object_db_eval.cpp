@@ -5,7 +5,6 @@
 
 #include "core/error.h"
 #include "eval/object_db_eval_models.h"
-#include "sim/world/world.h"
 
 namespace strata::eval {
 namespace {
@@ -131,17 +130,6 @@ void ObjectDbTruth::validate() const {
                        std::to_string(shapes.size()));
     }
   }
-}
-
-ObjectDbTruth objectDbTruth(const sim::World& world) {
-  ObjectDbTruth truth;
-  for (int id = 1; id <= world.objectCount(); ++id) {
-    truth.shapes.push_back(world.object(id).shape);
-    truth.names.push_back(world.object(id).name);
-    truth.meshes_O.push_back(world.objectMesh(id));
-  }
-  for (int s = 0; s < world.sessionCount(); ++s) truth.sessions.push_back(world.session(s));
-  return truth;
 }
 
 bool sameShape(const sim::ShapeSpec& a, const sim::ShapeSpec& b) {

@@ -51,8 +51,17 @@ struct ObjectDbTruth {
   void validate() const;
 };
 
-/// The truth of a simulated world.
-ObjectDbTruth objectDbTruth(const sim::World& world);
+/// The truth of a simulated world; with `world_sessions`, session i of the database is the
+/// world's session world_sessions[i] (InputError for one the world lacks).
+ObjectDbTruth objectDbTruth(const sim::World& world, const std::vector<int>& world_sessions = {});
+
+/// Which true object each discovered segment lies on (change::evaluateObjects against every object
+/// present in the session, moved or not: a segment of an object change detection should not have
+/// reported is still that object). `segments[i]`: database session i's, world session
+/// world_sessions[i] (empty: i). Visibility is not needed for the identities and left empty.
+std::vector<change::SessionObjectEvaluation> segmentIdentities(
+    const sim::World& world, const std::vector<std::vector<change::DiscoveredObject>>& segments,
+    const std::vector<int>& world_sessions = {}, const change::EvaluationConfig& config = {});
 
 /// Same shape: same kind and the same size, radius, sides, levels or mesh file (colour aside).
 bool sameShape(const sim::ShapeSpec& a, const sim::ShapeSpec& b);
