@@ -217,7 +217,7 @@ TEST(Store, ExceptionInsideATransactionRollsEverythingBack) {
   fs::remove_all(dir);
 }
 
-TEST(Store, EmptyVersionZeroFileIsMigratedAndKeptAtVersionOne) {
+TEST(Store, EmptyVersionZeroFileIsMigratedToTheCurrentVersion) {
   const fs::path dir = freshStoreDir("v0");
   const fs::path db = dir / "map.sqlite";
   std::ofstream(db).close();  // an empty file is a valid SQLite database at user_version 0
@@ -232,6 +232,45 @@ TEST(Store, EmptyVersionZeroFileIsMigratedAndKeptAtVersionOne) {
   fs::remove_all(dir);
 }
 
+TEST(Store, VersionOneFileIsMigratedKeepingItsSessions) {
+  const fs::path dir = freshStoreDir("v1");
+  const fs::path db = dir / "map.sqlite";
+  {
+    Store store(db.string());
+    store.addSession("s", (dir / "s").string());
+  }
+  // What a build of schema version 1 left: no object_database table.
+  execSql(db, "DROP TABLE object_database; PRAGMA user_version = 1");
+  {
+    Store store(db.string(), {false, 0});
+    EXPECT_EQ(store.sessions().size(), 1u);
+    EXPECT_FALSE(store.objectDatabase().has_value());
+    store.setObjectDatabase({1, {1, 2, 3}});
+  }
+  store::Database raw(db.string(), false);
+  EXPECT_EQ(raw.queryInt("PRAGMA user_version", "test"), store::kSchemaVersion);
+  fs::remove_all(dir);
+}
+
+TEST(Store, ObjectDatabaseBlobIsReplacedWholeAndReadBack) {
+  const fs::path dir = freshStoreDir("objects");
+  const fs::path db = dir / "map.sqlite";
+  {
+    Store store(db.string());
+    EXPECT_FALSE(store.objectDatabase().has_value());
+    store.setObjectDatabase({1, {1, 2, 3}});
+    store.setObjectDatabase({1, {4, 5}});
+    EXPECT_THROW(store.setObjectDatabase({0, {1}}), InputError);
+    EXPECT_THROW(store.setObjectDatabase({1, {}}), InputError);
+  }
+  Store store(db.string(), {false, 0});
+  const auto blob = store.objectDatabase();
+  ASSERT_TRUE(blob.has_value());
+  EXPECT_EQ(blob->format_version, 1u);
+  EXPECT_EQ(blob->bytes, (std::vector<std::uint8_t>{4, 5}));
+  fs::remove_all(dir);
+}
+
 TEST(Store, FutureSchemaVersionIsRefusedNamingBothVersions) {
   const fs::path dir = freshStoreDir("future");
   const fs::path db = dir / "map.sqlite";
@@ -242,7 +281,8 @@ TEST(Store, FutureSchemaVersionIsRefusedNamingBothVersions) {
   EXPECT_EQ(readFile(db.string()), before);  // refused before any write
   EXPECT_NE(message.find(db.string()), std::string::npos) << message;
   EXPECT_NE(message.find("version 7"), std::string::npos) << message;
-  EXPECT_NE(message.find("version 1"), std::string::npos) << message;
+  EXPECT_NE(message.find("version " + std::to_string(store::kSchemaVersion)), std::string::npos)
+      << message;
   EXPECT_THROW(Store store(db.string()), InputError);
   fs::remove_all(dir);
 }

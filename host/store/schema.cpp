@@ -80,6 +80,15 @@ std::string schemaV1() {
          "CREATE INDEX resources_by_keyframe ON resources(keyframe_id);\n";
 }
 
+/// Version 2: the object database (objects/object_database_file.h), one row holding its file's
+/// bytes and their format version.
+std::string schemaV2() {
+  return "CREATE TABLE object_database (\n"
+         "  id INTEGER PRIMARY KEY CHECK (id = 1),\n"
+         "  format_version INTEGER NOT NULL CHECK (format_version >= 1),\n"
+         "  data BLOB NOT NULL);\n";
+}
+
 /// Step i takes a file from version i to i + 1.
 struct Migration {
   int from_version;
@@ -115,7 +124,7 @@ void checkSchema(Database& db) {
 void migrate(Database& db) {
   checkSchema(db);
   const std::int64_t version = db.queryInt("PRAGMA user_version", "read the schema version");
-  const Migration migrations[] = {{0, schemaV1()}};
+  const Migration migrations[] = {{0, schemaV1()}, {1, schemaV2()}};
   for (const Migration& m : migrations) {
     if (m.from_version < version) continue;
     Transaction transaction(db);

@@ -7,7 +7,7 @@ namespace strata::store {
 class Database;
 
 /// The schema version this build writes (PRAGMA user_version).
-constexpr int kSchemaVersion = 1;
+constexpr int kSchemaVersion = 2;
 /// PRAGMA application_id of a Strata map: "STRA".
 constexpr std::int32_t kApplicationId = 0x53545241;
 

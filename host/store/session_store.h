@@ -31,6 +31,12 @@ struct StoreOptions {
   std::int64_t max_database_bytes = 0;
 };
 
+/// The object database's copy in the map (objects/object_database_file.h writes and reads it).
+struct ObjectDatabaseBlob {
+  std::uint32_t format_version = 0;  // of the bytes' own format
+  std::vector<std::uint8_t> bytes;
+};
+
 /// How attachResource() places the file.
 enum class AttachMode {
   kReference,  // leave it where it is; store its path relative to the database's folder
@@ -86,6 +92,12 @@ class Store {
   std::vector<ResourceProblem> verifyResources(std::optional<std::int64_t> session_id = {});
   /// The absolute path of a resource's file.
   std::string resourcePath(const ResourceRecord& resource) const;
+
+  /// Stores the object database's bytes (table object_database, one row), replacing any earlier
+  /// copy in one transaction. InputError for an empty blob or format version 0.
+  void setObjectDatabase(const ObjectDatabaseBlob& blob);
+  /// The stored copy; nullopt when the map holds none.
+  std::optional<ObjectDatabaseBlob> objectDatabase();
 
   std::vector<SessionRecord> sessions();
   /// A session's keyframes in time order.

@@ -1,0 +1,304 @@
+// Registration of two surface clouds: FPFH correspondences -> RANSAC over them (upright
+// hypotheses only) -> the best hypotheses scored on the whole clouds -> point-to-plane ICP.
+//
+// NOTE: the RANSAC loop is ours rather than pcl::SampleConsensusPrerejective because (1) each
+// hypothesis is refused as soon as it tilts the object more than max_tilt_deg (objects stand on
+// the floor), which Prerejective cannot be told; (2) it draws from its own std::mt19937 seeded
+// with config.seed, where Prerejective calls the process-wide rand() (shared state between
+// threads); (3) it keeps several distinct hypotheses, so a symmetric part that wins the
+// correspondence vote does not hide the right pose from the whole-cloud check.
+#include "objects/object_registration.h"
+
+#include <pcl/common/transforms.h>
+#include <pcl/exceptions.h>
+#include <pcl/features/fpfh.h>
+#include <pcl/kdtree/kdtree_flann.h>
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+#include <pcl/registration/correspondence_estimation.h>
+#include <pcl/search/kdtree.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "core/error.h"
+#include "objects/internal/registration_ransac.h"
+
+namespace strata::objects {
+
+namespace {
+
+using Cloud = pcl::PointCloud<pcl::PointNormal>;
+using Features = pcl::PointCloud<pcl::FPFHSignature33>;
+
+/// Hypotheses with the most correspondence inliers scored on the whole clouds, and of those the
+/// best few refined by ICP: enough for a symmetric object's two or four equivalent poses.
+constexpr std::size_t kHypothesesScored = 8;
+constexpr std::size_t kHypothesesRefined = 3;
+
+void requireCloud(const SurfaceCloud& cloud, const char* which) {
+  if (cloud.empty()) {
+    throw InputError(std::string("registerSurfaces: the ") + which + " cloud is empty");
+  }
+  if (cloud.normals.size() != cloud.points.size()) {
+    throw InputError(std::string("registerSurfaces: the ") + which + " cloud has " +
+                     std::to_string(cloud.points.size()) + " points but " +
+                     std::to_string(cloud.normals.size()) + " normals");
+  }
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const float length = cloud.normals[i].norm();
+    if (!cloud.points[i].allFinite() || !std::isfinite(length) || std::abs(length - 1.0f) > 0.1f) {
+      throw InputError(std::string("registerSurfaces: the ") + which + " cloud's point " +
+                       std::to_string(i) + " has no unit normal (length " + std::to_string(length) +
+                       ") or a non-finite position");
+    }
+  }
+}
+
+Cloud::Ptr toPcl(const SurfaceCloud& cloud) {
+  Cloud::Ptr out(new Cloud);
+  out->resize(cloud.size());
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    pcl::PointNormal& p = (*out)[i];
+    p.getVector3fMap() = cloud.points[i];
+    p.getNormalVector3fMap() = cloud.normals[i];
+    p.curvature = 0.0f;
+  }
+  return out;
+}
+
+Features::Ptr computeFpfh(const Cloud::Ptr& cloud, float radius_m) {
+  pcl::FPFHEstimation<pcl::PointNormal, pcl::PointNormal, pcl::FPFHSignature33> estimation;
+  estimation.setInputCloud(cloud);
+  estimation.setInputNormals(cloud);
+  estimation.setSearchMethod(pcl::make_shared<pcl::search::KdTree<pcl::PointNormal>>());
+  estimation.setRadiusSearch(radius_m);
+  Features::Ptr features(new Features);
+  estimation.compute(*features);
+  return features;
+}
+
+bool finiteFeature(const pcl::FPFHSignature33& f) {
+  return std::all_of(std::begin(f.histogram), std::end(f.histogram),
+                     [](float v) { return std::isfinite(v); });
+}
+
+/// Each source point with a finite descriptor paired with the target point of the nearest one.
+std::vector<Correspondence> matchFeatures(const Features::Ptr& source,
+                                          const Features::Ptr& target) {
+  Features::Ptr finite_target(new Features);
+  std::vector<int> target_index;
+  for (std::size_t i = 0; i < target->size(); ++i) {
+    if (!finiteFeature((*target)[i])) continue;
+    finite_target->push_back((*target)[i]);
+    target_index.push_back(static_cast<int>(i));
+  }
+  std::vector<Correspondence> out;
+  if (finite_target->empty()) return out;
+  pcl::KdTreeFLANN<pcl::FPFHSignature33> tree;
+  tree.setInputCloud(finite_target);
+  std::vector<int> nearest(1);
+  std::vector<float> distance(1);
+  for (std::size_t i = 0; i < source->size(); ++i) {
+    if (!finiteFeature((*source)[i])) continue;
+    if (tree.nearestKSearch((*source)[i], 1, nearest, distance) == 1) {
+      out.push_back({static_cast<int>(i), target_index[static_cast<std::size_t>(nearest[0])]});
+    }
+  }
+  return out;
+}
+
+/// Share of source points with a target point within `inlier_m` after `T`, and their RMS distance.
+struct Fit {
+  double fitness = 0.0;
+  double rmse_m = 0.0;
+};
+Fit scoreFit(const Cloud& source, const pcl::KdTreeFLANN<pcl::PointNormal>& target_tree,
+             const Eigen::Matrix4f& T, float inlier_m) {
+  std::vector<int> nearest(1);
+  std::vector<float> squared(1);
+  std::size_t inliers = 0;
+  double sum_squared = 0.0;
+  pcl::PointNormal moved;
+  for (const pcl::PointNormal& p : source) {
+    moved.getVector4fMap() = T * p.getVector4fMap();
+    if (target_tree.nearestKSearch(moved, 1, nearest, squared) == 1 &&
+        squared[0] <= inlier_m * inlier_m) {
+      ++inliers;
+      sum_squared += squared[0];
+    }
+  }
+  Fit fit;
+  if (inliers > 0) {
+    fit.fitness = static_cast<double>(inliers) / static_cast<double>(source.size());
+    fit.rmse_m = std::sqrt(sum_squared / static_cast<double>(inliers));
+  }
+  return fit;
+}
+
+/// Drops pairs whose normals differ by more than 60 deg: near thin parts (a board, a chair leg)
+/// the nearest point is often on the far side, and those pairs pull the fit off by millimetres.
+void keepCompatibleNormals(const Cloud& moved, const Cloud& target, pcl::Correspondences& pairs) {
+  constexpr float kMinCosine = 0.5f;
+  pcl::Correspondences kept;
+  kept.reserve(pairs.size());
+  for (const pcl::Correspondence& c : pairs) {
+    const float cosine = moved[static_cast<std::size_t>(c.index_query)].getNormalVector3fMap().dot(
+        target[static_cast<std::size_t>(c.index_match)].getNormalVector3fMap());
+    if (cosine >= kMinCosine) kept.push_back(c);
+  }
+  pairs.swap(kept);
+}
+
+/// One Gauss-Newton step of point-to-plane ICP (Low 2004, the small-angle linearisation), with
+/// point-to-point rows of weight kPointWeight: partial views often see a direction constrained by
+/// no plane at all (two views that share only the top and one side of a box), where the
+/// point-to-plane normal matrix is singular (PCL's TransformationEstimationPointToPlaneLLS then
+/// inverts it into NaN). The nearest points hold such a direction without biasing the others.
+Eigen::Matrix4f pointToPlaneStep(const Cloud& moved, const Cloud& target,
+                                 const pcl::Correspondences& pairs) {
+  constexpr double kPointWeight = 0.1;
+  Eigen::Matrix<double, 6, 6> H = Eigen::Matrix<double, 6, 6>::Zero();
+  Eigen::Matrix<double, 6, 1> g = Eigen::Matrix<double, 6, 1>::Zero();
+  auto addRow = [&](const Eigen::Matrix<double, 6, 1>& J, double residual, double weight) {
+    H.noalias() += weight * J * J.transpose();
+    g.noalias() += weight * J * residual;
+  };
+  for (const pcl::Correspondence& c : pairs) {
+    const Eigen::Vector3d s =
+        moved[static_cast<std::size_t>(c.index_query)].getVector3fMap().cast<double>();
+    const pcl::PointNormal& t = target[static_cast<std::size_t>(c.index_match)];
+    const Eigen::Vector3d d = t.getVector3fMap().cast<double>() - s;
+    const Eigen::Vector3d n = t.getNormalVector3fMap().cast<double>();
+    Eigen::Matrix<double, 6, 1> J;
+    J << s.cross(n), n;  // d(n . (R s + t)) / d(omega, t) at identity
+    addRow(J, n.dot(d), 1.0);
+    for (int axis = 0; axis < 3; ++axis) {
+      const Eigen::Vector3d e = Eigen::Vector3d::Unit(axis);
+      J << s.cross(e), e;
+      addRow(J, d[axis], kPointWeight);
+    }
+  }
+  const Eigen::Matrix<double, 6, 1> x = H.ldlt().solve(g);
+  Eigen::Matrix4d step = Eigen::Matrix4d::Identity();
+  const double angle = x.head<3>().norm();
+  if (angle > 0.0) {
+    step.topLeftCorner<3, 3>() = Eigen::AngleAxisd(angle, x.head<3>() / angle).toRotationMatrix();
+  }
+  step.topRightCorner<3, 1>() = x.tail<3>();
+  return step.cast<float>();
+}
+
+/// Point-to-plane ICP: PCL's correspondence search (kd-tree), pairs with compatible normals,
+/// Gauss-Newton steps as above until they fall below 10 um and 10 urad.
+Eigen::Matrix4f refineIcp(const Cloud::Ptr& source, const Cloud::Ptr& target,
+                          const Eigen::Matrix4f& guess, const RegistrationConfig& config) {
+  pcl::registration::CorrespondenceEstimation<pcl::PointNormal, pcl::PointNormal, float> search;
+  search.setInputTarget(target);
+  const double max_distance_m = config.icp_max_distance_voxels * config.voxel_size_m;
+  Eigen::Matrix4f T = guess;
+  Cloud::Ptr moved(new Cloud);
+  pcl::Correspondences pairs;
+  for (int iteration = 0; iteration < config.icp_iterations; ++iteration) {
+    pcl::transformPointCloudWithNormals(*source, *moved, T);
+    search.setInputSource(moved);
+    search.determineCorrespondences(pairs, max_distance_m);
+    keepCompatibleNormals(*moved, *target, pairs);
+    if (pairs.size() < 6) break;  // the 6 DoF are not determined
+    const Eigen::Matrix4f step = pointToPlaneStep(*moved, *target, pairs);
+    if (!step.allFinite()) break;
+    T = step * T;
+    const float turned =
+        std::acos(std::clamp((step.topLeftCorner<3, 3>().trace() - 1.0f) / 2.0f, -1.0f, 1.0f));
+    if (step.topRightCorner<3, 1>().norm() < 1e-5f && turned < 1e-5f) break;
+  }
+  return T;
+}
+
+}  // namespace
+
+void RegistrationConfig::validate() const {
+  auto require = [](bool ok, const char* field, const std::string& why) {
+    if (!ok) throw InputError(std::string("RegistrationConfig.") + field + " " + why);
+  };
+  require(std::isfinite(voxel_size_m) && voxel_size_m > 0.0f, "voxel_size_m", "must be > 0");
+  require(normal_radius_voxels > 0.0f, "normal_radius_voxels", "must be > 0");
+  require(feature_radius_voxels > 1.0f, "feature_radius_voxels", "must be > 1");
+  require(inlier_distance_voxels > 0.0f, "inlier_distance_voxels", "must be > 0");
+  require(ransac_iterations > 0, "ransac_iterations", "must be > 0");
+  require(ransac_samples >= 3 && ransac_samples <= 8, "ransac_samples", "must be in 3..8");
+  require(edge_similarity >= 0.0f && edge_similarity < 1.0f, "edge_similarity",
+          "must be in [0, 1)");
+  require(icp_iterations >= 0, "icp_iterations", "must be >= 0");
+  require(icp_max_distance_voxels > 0.0f, "icp_max_distance_voxels", "must be > 0");
+  require(max_tilt_deg > 0.0f && max_tilt_deg <= 180.0f, "max_tilt_deg", "must be in (0, 180]");
+}
+
+RegistrationResult registerSurfaces(const SurfaceCloud& source, const SurfaceCloud& target,
+                                    const RegistrationConfig& config) {
+  const auto start = std::chrono::steady_clock::now();
+  config.validate();
+  requireCloud(source, "source");
+  requireCloud(target, "target");
+  RegistrationResult result;
+  auto finish = [&](const std::string& reason) {
+    result.reason = reason;
+    result.converged = reason.empty();
+    result.ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return result;
+  };
+  try {
+    const Cloud::Ptr source_pcl = toPcl(source);
+    const Cloud::Ptr target_pcl = toPcl(target);
+    const float radius_m = config.feature_radius_voxels * config.voxel_size_m;
+    const std::vector<Correspondence> matches =
+        matchFeatures(computeFpfh(source_pcl, radius_m), computeFpfh(target_pcl, radius_m));
+    result.correspondences = static_cast<int>(matches.size());
+    const std::vector<Hypothesis> hypotheses =
+        ransacUpright(source.points, target.points, matches, config, kHypothesesScored);
+    if (hypotheses.empty()) {
+      return finish("no RANSAC hypothesis within " + std::to_string(config.max_tilt_deg) +
+                    " deg of upright from " + std::to_string(matches.size()) +
+                    " feature correspondences");
+    }
+    pcl::KdTreeFLANN<pcl::PointNormal> target_tree;
+    target_tree.setInputCloud(target_pcl);
+    const float inlier_m = config.inlier_distance_voxels * config.voxel_size_m;
+    std::vector<std::pair<double, Eigen::Matrix4f>> scored;
+    for (const Hypothesis& h : hypotheses) {
+      scored.emplace_back(scoreFit(*source_pcl, target_tree, h.T, inlier_m).fitness, h.T);
+    }
+    std::stable_sort(scored.begin(), scored.end(),
+                     [](const auto& a, const auto& b) { return a.first > b.first; });
+    Fit best_fit;
+    Eigen::Matrix4f best_T = Eigen::Matrix4f::Identity();
+    bool have_best = false;
+    for (std::size_t i = 0; i < std::min(kHypothesesRefined, scored.size()); ++i) {
+      const Eigen::Matrix4f T = refineIcp(source_pcl, target_pcl, scored[i].second, config);
+      if (tiltDeg(T) > config.max_tilt_deg) continue;
+      const Fit fit = scoreFit(*source_pcl, target_tree, T, inlier_m);
+      if (!have_best || fit.fitness > best_fit.fitness) {
+        best_fit = fit;
+        best_T = T;
+        have_best = true;
+      }
+    }
+    if (!have_best) {
+      return finish("ICP tilted every hypothesis by more than " +
+                    std::to_string(config.max_tilt_deg) + " deg");
+    }
+    result.T_target_source.matrix() = best_T.cast<double>();
+    result.fitness = best_fit.fitness;
+    result.rmse_m = best_fit.rmse_m;
+    if (best_fit.fitness <= 0.0) return finish("no source point near the target after ICP");
+    return finish("");
+  } catch (const pcl::PCLException& e) {
+    return finish(std::string("PCL failed: ") + e.what());
+  }
+}
+
+}  // namespace strata::objects

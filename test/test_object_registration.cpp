@@ -1,0 +1,198 @@
+// registerSurfaces(): two partial views of one simulated object (the simulator's chair and table
+// meshes) related by a known yaw and translation; a different shape; bad input; determinism.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <random>
+
+#include "core/error.h"
+#include "objects/object_registration.h"
+#include "sim/world/shape_mesh.h"
+
+namespace strata::objects {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr float kVoxel = 0.02f;
+
+sim::ShapeSpec shape(sim::ShapeKind kind, const Eigen::Vector3d& size_m) {
+  sim::ShapeSpec s;
+  s.kind = kind;
+  s.size_m = size_m;
+  return s;
+}
+
+/// The object's surface at T_W_P as a TSDF session would see it from far along `view_W`
+/// (azimuth, elevation in degrees): faces turned towards the view, none turned to the floor;
+/// dense random samples with 2 mm noise, thinned to one per voxel cube; in the frame O of the
+/// samples' centroid (axes as the world's, as observations are). Returns the cloud and T_W_O.
+std::pair<SurfaceCloud, Eigen::Isometry3d> view(const sim::ShapeSpec& spec,
+                                                const Eigen::Isometry3d& T_W_P, double azimuth_deg,
+                                                double elevation_deg, unsigned seed) {
+  const double az = azimuth_deg * kPi / 180.0, el = elevation_deg * kPi / 180.0;
+  const Eigen::Vector3f to_camera(static_cast<float>(std::cos(el) * std::cos(az)),
+                                  static_cast<float>(std::cos(el) * std::sin(az)),
+                                  static_cast<float>(std::sin(el)));
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  std::normal_distribution<float> noise(0.0f, 0.002f);
+  std::map<std::tuple<int, int, int>, std::pair<Eigen::Vector3f, Eigen::Vector3f>> cells;
+  const Eigen::Isometry3f T = T_W_P.cast<float>();
+  for (const Mesh& part : sim::shapeParts(spec)) {
+    for (const Eigen::Vector3i& tri : part.triangles) {
+      const Eigen::Vector3f a = T * part.vertices[tri[0]], b = T * part.vertices[tri[1]],
+                            c = T * part.vertices[tri[2]];
+      const Eigen::Vector3f n = (b - a).cross(c - a).normalized();
+      if (n.dot(to_camera) < 0.1f || n.z() < -0.5f) continue;
+      const float area = 0.5f * (b - a).cross(c - a).norm();
+      const int count = static_cast<int>(area / (0.25f * kVoxel * kVoxel)) + 1;
+      for (int i = 0; i < count; ++i) {
+        float u = unit(rng), v = unit(rng);
+        if (u + v > 1.0f) u = 1.0f - u, v = 1.0f - v;
+        const Eigen::Vector3f p =
+            a + u * (b - a) + v * (c - a) + Eigen::Vector3f(noise(rng), noise(rng), noise(rng));
+        const Eigen::Vector3i cell = (p / kVoxel).array().floor().cast<int>();
+        cells.emplace(std::make_tuple(cell.x(), cell.y(), cell.z()), std::make_pair(p, n));
+      }
+    }
+  }
+  Eigen::Vector3f centroid = Eigen::Vector3f::Zero();
+  for (const auto& [key, pn] : cells) centroid += pn.first;
+  centroid /= static_cast<float>(cells.size());
+  SurfaceCloud cloud;
+  for (const auto& [key, pn] : cells) {
+    cloud.points.push_back(pn.first - centroid);
+    cloud.normals.push_back(pn.second);
+  }
+  Eigen::Isometry3d T_W_O = Eigen::Isometry3d::Identity();
+  T_W_O.translation() = centroid.cast<double>();
+  return {cloud, T_W_O};
+}
+
+struct Errors {
+  double translation_m;
+  double rotation_deg;
+};
+Errors errorsOf(const Eigen::Isometry3d& estimate, const Eigen::Isometry3d& truth) {
+  const Eigen::Isometry3d delta = truth.inverse() * estimate;
+  return {delta.translation().norm(), Eigen::AngleAxisd(delta.rotation()).angle() * 180.0 / kPi};
+}
+
+RegistrationConfig config() {
+  RegistrationConfig c;
+  c.voxel_size_m = kVoxel;
+  return c;
+}
+
+const sim::ShapeSpec kChair = shape(sim::ShapeKind::kChair, Eigen::Vector3d(0.5, 0.5, 0.9));
+const sim::ShapeSpec kTable = shape(sim::ShapeKind::kTable, Eigen::Vector3d(1.2, 0.8, 0.75));
+
+/// The object seen at the origin from azimuth 30 deg (target) and again after moving by `yaw_deg`
+/// and (1.3, -0.6) m, seen from 60 deg further round the object (source).
+void expectRecovered(const sim::ShapeSpec& spec, double yaw_deg) {
+  const Eigen::Isometry3d T_W_P1 = sim::floorPose(Eigen::Vector2d(0.0, 0.0), 0.0);
+  const Eigen::Isometry3d T_W_P2 = sim::floorPose(Eigen::Vector2d(1.3, -0.6), yaw_deg);
+  const auto [target, T_W_Ot] = view(spec, T_W_P1, 30.0, 35.0, 1);
+  const auto [source, T_W_Os] = view(spec, T_W_P2, 90.0 + yaw_deg, 35.0, 2);
+  const Eigen::Isometry3d truth = T_W_Ot.inverse() * T_W_P1 * T_W_P2.inverse() * T_W_Os;
+  const RegistrationResult r = registerSurfaces(source, target, config());
+  ASSERT_TRUE(r.converged) << r.reason;
+  const Errors e = errorsOf(r.T_target_source, truth);
+  std::printf(
+      "yaw %5.1f deg: %zu / %zu samples, %d correspondences, fitness %.3f, rmse %.4f m, "
+      "error %.4f m %.2f deg, %.0f ms\n",
+      yaw_deg, source.size(), target.size(), r.correspondences, r.fitness, r.rmse_m,
+      e.translation_m, e.rotation_deg, r.ms);
+  EXPECT_LT(e.translation_m, 0.01) << "yaw " << yaw_deg;
+  EXPECT_LT(e.rotation_deg, 2.0) << "yaw " << yaw_deg;
+  EXPECT_GT(r.fitness, 0.5);
+}
+
+TEST(ObjectRegistration, RecoversYawAndTranslationOfTwoPartialChairViews) {
+  for (double yaw_deg : {20.0, 75.0, 130.0, 170.0}) expectRecovered(kChair, yaw_deg);
+}
+
+TEST(ObjectRegistration, RecoversYawAndTranslationOfTwoPartialTableViews) {
+  for (double yaw_deg : {45.0, 160.0}) expectRecovered(kTable, yaw_deg);
+}
+
+TEST(ObjectRegistration, ADifferentShapeFitsBadly) {
+  const sim::ShapeSpec cylinder = shape(sim::ShapeKind::kCylinder, Eigen::Vector3d(0.5, 0.5, 0.9));
+  const auto chair = view(kChair, sim::floorPose(Eigen::Vector2d(0.0, 0.0), 0.0), 30.0, 35.0, 1);
+  const auto same = view(kChair, sim::floorPose(Eigen::Vector2d(1.0, 0.0), 50.0), 140.0, 35.0, 2);
+  const auto other = view(cylinder, sim::floorPose(Eigen::Vector2d(1.0, 0.0), 0.0), 90.0, 35.0, 3);
+  const auto table = view(kTable, sim::floorPose(Eigen::Vector2d(1.0, 0.0), 0.0), 90.0, 35.0, 4);
+  const RegistrationResult right = registerSurfaces(same.first, chair.first, config());
+  ASSERT_TRUE(right.converged) << right.reason;
+  for (const auto* wrong_view : {&other, &table}) {
+    const RegistrationResult wrong = registerSurfaces(wrong_view->first, chair.first, config());
+    std::printf(
+        "same shape fitness %.3f; other shape onto the chair: converged %d, fitness %.3f "
+        "(%s)\n",
+        right.fitness, wrong.converged, wrong.fitness, wrong.reason.c_str());
+    EXPECT_TRUE(!wrong.converged || wrong.fitness < 0.6 * right.fitness);
+  }
+}
+
+TEST(ObjectRegistration, IsDeterministicForASeed) {
+  const auto target = view(kChair, sim::floorPose(Eigen::Vector2d(0.0, 0.0), 0.0), 30.0, 35.0, 1);
+  const auto source =
+      view(kChair, sim::floorPose(Eigen::Vector2d(1.0, 0.5), 100.0), 190.0, 35.0, 2);
+  RegistrationConfig c = config();
+  c.seed = 7;
+  const RegistrationResult a = registerSurfaces(source.first, target.first, c);
+  const RegistrationResult b = registerSurfaces(source.first, target.first, c);
+  ASSERT_TRUE(a.converged) << a.reason;
+  EXPECT_TRUE(a.T_target_source.matrix() == b.T_target_source.matrix());
+  EXPECT_EQ(a.fitness, b.fitness);
+  EXPECT_EQ(a.correspondences, b.correspondences);
+}
+
+std::string inputErrorOf(const SurfaceCloud& source, const SurfaceCloud& target,
+                         const RegistrationConfig& c) {
+  try {
+    registerSurfaces(source, target, c);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ObjectRegistration, RefusesEmptyCloudsMissingNormalsAndBadConfig) {
+  const SurfaceCloud chair =
+      view(kChair, sim::floorPose(Eigen::Vector2d(0.0, 0.0), 0.0), 30.0, 35.0, 1).first;
+  EXPECT_NE(inputErrorOf(SurfaceCloud{}, chair, config()).find("source cloud is empty"),
+            std::string::npos);
+  EXPECT_NE(inputErrorOf(chair, SurfaceCloud{}, config()).find("target cloud is empty"),
+            std::string::npos);
+  SurfaceCloud no_normals = chair;
+  no_normals.normals.clear();
+  EXPECT_NE(inputErrorOf(no_normals, chair, config()).find("normals"), std::string::npos);
+  SurfaceCloud zero_normal = chair;
+  zero_normal.normals[5] = Eigen::Vector3f::Zero();
+  EXPECT_NE(inputErrorOf(chair, zero_normal, config()).find("point 5 has no unit normal"),
+            std::string::npos);
+  RegistrationConfig bad = config();
+  bad.voxel_size_m = 0.0f;
+  EXPECT_NE(inputErrorOf(chair, chair, bad).find("voxel_size_m"), std::string::npos);
+  bad = config();
+  bad.ransac_samples = 2;
+  EXPECT_NE(inputErrorOf(chair, chair, bad).find("ransac_samples"), std::string::npos);
+}
+
+TEST(ObjectRegistration, TooFewPointsIsNotConvergedRatherThanAnError) {
+  SurfaceCloud tiny;
+  for (int i = 0; i < 3; ++i) {
+    tiny.points.push_back(Eigen::Vector3f(0.1f * static_cast<float>(i), 0.0f, 0.0f));
+    tiny.normals.push_back(Eigen::Vector3f::UnitZ());
+  }
+  const RegistrationResult r = registerSurfaces(tiny, tiny, config());
+  EXPECT_FALSE(r.converged);
+  EXPECT_FALSE(r.reason.empty());
+}
+
+}  // namespace
+}  // namespace strata::objects
