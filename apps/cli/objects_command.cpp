@@ -96,11 +96,12 @@ void runChecked(const ObjectsOptions& o) {
   const ObjectsFiles files = writeObjectsFiles(run, result, o.out_dir, truth_json);
   const double total_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::printf("Object database over %zu sessions (%zu frames each at most, %.0f s): %s; %s. "
-              "Wrote %s, %zu model meshes, %s and %s.\n",
-              result.sessions.size(), sessions.front()->size(), total_s,
-              summarizeObjects(run).c_str(), truth_summary.c_str(), files.json.c_str(),
-              files.models.size(), files.database.c_str(), files.contact_sheet.c_str());
+  std::printf(
+      "Object database over %zu sessions (%zu frames each at most, %.0f s): %s; %s. "
+      "Wrote %s, %zu model meshes, %s and %s.\n",
+      result.sessions.size(), sessions.front()->size(), total_s, summarizeObjects(run).c_str(),
+      truth_summary.c_str(), files.json.c_str(), files.models.size(), files.database.c_str(),
+      files.contact_sheet.c_str());
 }
 
 }  // namespace

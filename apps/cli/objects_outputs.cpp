@@ -33,7 +33,8 @@ Mesh concatenate(Mesh a, const Mesh& b) {
       a.colors.insert(a.colors.end(), b.vertices.size(), grey);
     }
   }
-  for (const Eigen::Vector3i& t : b.triangles) a.triangles.push_back(t + Eigen::Vector3i::Constant(base));
+  for (const Eigen::Vector3i& t : b.triangles)
+    a.triangles.push_back(t + Eigen::Vector3i::Constant(base));
   return a;
 }
 
@@ -53,11 +54,10 @@ ObjectsRun buildObjectDatabase(const DiffResult& result, const std::vector<TsdfM
   ObjectsRun run{objects::ObjectDatabase(config), {}, 0.0};
   for (std::size_t s = 0; s < maps.size(); ++s) {
     const DiffSession& session = result.sessions[s];
-    run.outcomes.push_back(run.database.addSession(static_cast<int>(s), maps[s], session.surface,
-                                                   session.objects));
+    run.outcomes.push_back(
+        run.database.addSession(static_cast<int>(s), maps[s], session.surface, session.objects));
   }
-  run.build_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  run.build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return run;
 }
 

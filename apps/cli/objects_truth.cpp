@@ -47,7 +47,8 @@ void checkAgrees(const sim::World& world, int session, const SessionRecord& reco
   const auto& objects = world.session(session).objects;
   bool same = record.seed == world.seed() && record.objects.size() == objects.size();
   for (std::size_t i = 0; same && i < objects.size(); ++i) {
-    same = record.objects[i].first == objects[i].name && record.objects[i].second == objects[i].present;
+    same = record.objects[i].first == objects[i].name &&
+           record.objects[i].second == objects[i].present;
   }
   if (!same) {
     throw InputError("the ground truth of session folder '" + dir + "' (world '" + record.world +
@@ -101,9 +102,8 @@ eval::ObjectDbEvaluation evaluateObjectsRun(const SimTruth& truth, const DiffRes
   std::vector<std::vector<change::DiscoveredObject>> segments;
   for (const DiffSession& session : result.sessions) segments.push_back(session.objects);
   const auto identities = eval::segmentIdentities(*truth.world, segments, truth.world_sessions);
-  return eval::evaluateObjectDatabase(identities,
-                                      eval::objectDbTruth(*truth.world, truth.world_sessions),
-                                      run.database.models());
+  return eval::evaluateObjectDatabase(
+      identities, eval::objectDbTruth(*truth.world, truth.world_sessions), run.database.models());
 }
 
 }  // namespace strata::apps
