@@ -77,6 +77,19 @@ class ObjectDatabase {
                                   std::vector<int> sessions);
 
  private:
+  /// The best accepted candidate of one segment (model_id 0: none).
+  struct Match {
+    int model_id = 0;
+    double score = 0.0;
+    RegistrationResult registration;
+    ConsistencyResult consistency;
+  };
+  SegmentOutcome addSegment(int session, const TsdfMap& session_map,
+                            const change::LabelledSurface& surface,
+                            const change::DiscoveredObject& segment);
+  Match bestMatch(const ObjectObservation& observation, const TsdfMap& session_map,
+                  SegmentOutcome& outcome) const;
+
   DatabaseConfig config_;
   std::vector<ObjectModel> models_;
   std::vector<int> sessions_;

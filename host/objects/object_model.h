@@ -56,8 +56,10 @@ struct ObjectModel {
 };
 
 /// Trilinear interpolation of the TSDF at `p` (map frame, metres): nullopt unless the 8 voxel
-/// centres around p are allocated with weight >= min_weight. Returns distance and weight
-/// (the minimum of the 8).
+/// centres around p are allocated with weight >= min_weight (and > 0). Corners whose trilinear
+/// weight is zero are not needed: a p within 1e-4 voxel of a grid plane counts as on it, so a
+/// sample at a voxel centre is that voxel, exactly. Returns distance, colour and weight (the
+/// minimum of the corners used).
 struct TsdfSample {
   float distance_m = 0.0f;
   float weight = 0.0f;

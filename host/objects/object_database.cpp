@@ -1,0 +1,203 @@
+#include "objects/object_database.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "core/error.h"
+
+namespace strata::objects {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+/// Segments largest first (most vertices; ties by id), so the most complete view of an object
+/// founds its model and smaller pieces match against it.
+std::vector<const change::DiscoveredObject*> largestFirst(
+    const std::vector<change::DiscoveredObject>& segments) {
+  std::vector<const change::DiscoveredObject*> order;
+  for (const change::DiscoveredObject& s : segments) order.push_back(&s);
+  std::stable_sort(order.begin(), order.end(), [](const auto* a, const auto* b) {
+    return a->vertex_count != b->vertex_count ? a->vertex_count > b->vertex_count : a->id < b->id;
+  });
+  return order;
+}
+
+void appendRefusal(std::string& refused, int model_id, const std::string& why) {
+  refused += (refused.empty() ? "" : "; ") + std::string("model ") + std::to_string(model_id) +
+             ": " + why;
+}
+
+/// Appends `mesh` (frame M) placed at T_W_M to `out`.
+void appendPlaced(const Mesh& mesh, const Eigen::Isometry3d& T_W_M, Mesh& out) {
+  const Eigen::Isometry3f T = T_W_M.cast<float>();
+  const Eigen::Matrix3f R = T.linear();
+  const int base = static_cast<int>(out.vertices.size());
+  const bool normals = mesh.hasNormals() && (out.vertices.empty() || out.hasNormals());
+  const bool colors = mesh.hasColors() && (out.vertices.empty() || out.hasColors());
+  if (!normals) out.normals.clear();
+  if (!colors) out.colors.clear();
+  for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
+    out.vertices.push_back(T * mesh.vertices[i]);
+    if (normals) out.normals.push_back(R * mesh.normals[i]);
+    if (colors) out.colors.push_back(mesh.colors[i]);
+  }
+  for (const Eigen::Vector3i& t : mesh.triangles) {
+    out.triangles.push_back(t + Eigen::Vector3i::Constant(base));
+  }
+}
+
+}  // namespace
+
+void DatabaseConfig::validate() const {
+  observation.validate();
+  registration.validate();
+  consistency.validate();
+  prefilter.validate();
+  model.validate();
+}
+
+ObjectDatabase::ObjectDatabase(const DatabaseConfig& config)
+    : config_(config), prefilter_(config.prefilter) {
+  config_.validate();
+}
+
+const ObjectModel* ObjectDatabase::findModel(int id) const {
+  for (const ObjectModel& m : models_) {
+    if (m.id == id) return &m;
+  }
+  return nullptr;
+}
+
+std::vector<SegmentOutcome> ObjectDatabase::addSession(
+    int session, const TsdfMap& session_map, const change::LabelledSurface& surface,
+    const std::vector<change::DiscoveredObject>& segments) {
+  if (std::find(sessions_.begin(), sessions_.end(), session) != sessions_.end()) {
+    throw InputError("object database: session " + std::to_string(session) +
+                     " was already added");
+  }
+  const float voxel_m = session_map.config().voxel_size_m;
+  if (!sessions_.empty() && voxel_m != config_.registration.voxel_size_m) {
+    throw InputError("object database: session " + std::to_string(session) + " has " +
+                     std::to_string(voxel_m) + " m voxels, the database " +
+                     std::to_string(config_.registration.voxel_size_m) + " m");
+  }
+  // NOTE: registration works on samples one map voxel apart, so its radii follow the map.
+  config_.registration.voxel_size_m = voxel_m;
+  std::vector<SegmentOutcome> outcomes;
+  for (const change::DiscoveredObject* segment : largestFirst(segments)) {
+    outcomes.push_back(addSegment(session, session_map, surface, *segment));
+  }
+  sessions_.push_back(session);
+  std::sort(sessions_.begin(), sessions_.end());
+  return outcomes;
+}
+
+SegmentOutcome ObjectDatabase::addSegment(int session, const TsdfMap& session_map,
+                                          const change::LabelledSurface& surface,
+                                          const change::DiscoveredObject& segment) {
+  const Clock::time_point start = Clock::now();
+  SegmentOutcome outcome;
+  outcome.session = session;
+  outcome.segment_id = segment.id;
+  ObjectObservation observation;
+  try {
+    observation = observeObject(session_map, surface, segment, session, config_.observation);
+  } catch (const InputError& e) {
+    outcome.skipped = e.what();
+    outcome.ms = msSince(start);
+    return outcome;
+  }
+  const Match best = bestMatch(observation, session_map, outcome);
+  const float spacing_m = config_.observation.sample_spacing_voxels * config_.registration.voxel_size_m;
+  ObjectInstance instance;
+  instance.session = session;
+  instance.segment_id = segment.id;
+  instance.observed_area_m2 = observation.surface_area_m2;
+  if (best.model_id != 0) {
+    ObjectModel& model = *std::find_if(models_.begin(), models_.end(),
+                                       [&](const ObjectModel& m) { return m.id == best.model_id; });
+    const Eigen::Isometry3d T_M_O = best.registration.T_target_source;
+    if (config_.merge) {
+      mergeObservation(model, observation, T_M_O, config_.model);
+      refreshModel(model, spacing_m, config_.model);
+    }
+    instance.T_W_M = observation.T_W_O * T_M_O.inverse();
+    instance.match_score = best.score;
+    instance.merged = config_.merge;
+    model.instances.push_back(instance);
+    outcome.model_id = model.id;
+    outcome.score = best.score;
+    outcome.registration = best.registration;
+    outcome.consistency = best.consistency;
+  } else {
+    models_.push_back(foundModel(next_id_++, observation, config_.model));
+    outcome.model_id = models_.back().id;
+    outcome.new_model = true;
+    outcome.score = 1.0;
+  }
+  const ObjectModel& changed = *findModel(outcome.model_id);
+  prefilter_.upsert(changed.id, changed.extent_m, changed.mean_color);
+  outcome.ms = msSince(start);
+  return outcome;
+}
+
+ObjectDatabase::Match ObjectDatabase::bestMatch(const ObjectObservation& observation,
+                                                const TsdfMap& session_map,
+                                                SegmentOutcome& outcome) const {
+  Match best;
+  const std::vector<int> candidates =
+      prefilter_.candidates(observation.extent_m, observation.mean_color);
+  outcome.candidates = static_cast<int>(candidates.size());
+  for (const int id : candidates) {
+    const ObjectModel* model = findModel(id);
+    if (model == nullptr || model->surface_M.empty()) continue;
+    const RegistrationResult registration =
+        registerSurfaces(observation.surface_O, model->surface_M, config_.registration);
+    if (!registration.converged) {
+      appendRefusal(outcome.refused, id, "registration: " + registration.reason);
+      continue;
+    }
+    ++outcome.registrations;
+    const ConsistencyResult consistency = checkConsistency(
+        *model, observation, registration.T_target_source, session_map, config_.consistency);
+    if (!consistency.accepted) {
+      appendRefusal(outcome.refused, id, consistency.reason);
+      continue;
+    }
+    const double score = registration.fitness * consistency.agreement;
+    if (score > best.score) best = {id, score, registration, consistency};
+  }
+  return best;
+}
+
+Mesh ObjectDatabase::sessionObjects(int session) const {
+  Mesh out;
+  for (const ObjectModel& model : models_) {
+    for (const ObjectInstance& instance : model.instances) {
+      if (instance.session == session) appendPlaced(model.mesh_M, instance.T_W_M, out);
+    }
+  }
+  return out;
+}
+
+ObjectDatabase ObjectDatabase::fromParts(const DatabaseConfig& config,
+                                         std::vector<ObjectModel> models,
+                                         std::vector<int> sessions) {
+  ObjectDatabase database(config);
+  database.models_ = std::move(models);
+  std::sort(sessions.begin(), sessions.end());
+  database.sessions_ = std::move(sessions);
+  for (const ObjectModel& m : database.models_) {
+    database.next_id_ = std::max(database.next_id_, m.id + 1);
+    database.prefilter_.upsert(m.id, m.extent_m, m.mean_color);
+  }
+  return database;
+}
+
+}  // namespace strata::objects
