@@ -100,7 +100,7 @@ TEST(ObjectsCommand, SimulatedSessionsWriteEveryOutputAndTheirScore) {
     ASSERT_TRUE(fs::exists(ply)) << ply;
     EXPECT_FALSE(readPly(ply.string()).empty());
   }
-  const ColorImage sheet = readColorPng((out / "objects.png").string());
+  const ColorImage sheet = readColorImage((out / "objects.png").string());
   EXPECT_GE(sheet.width_px, 200);
   fs::remove_all(sim);
   fs::remove_all(out);
