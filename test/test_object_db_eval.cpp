@@ -212,9 +212,37 @@ TEST(ObjectDbEval, PoseErrorMeasuredAtTheObjectCentre) {
   EXPECT_NEAR(e.pose.median_translation_m, 0.01, 1e-6);
   EXPECT_NEAR(e.pose.max_translation_m, 0.01, 1e-6);
   EXPECT_NEAR(e.pose.median_rotation_deg, 2.0, 1e-6);
+  EXPECT_EQ(e.models[0].pose_pairs, 3);
+  EXPECT_NEAR(e.models[0].pose_max_translation_m, 0.01, 1e-6);
+  EXPECT_NEAR(e.models[0].pose_max_rotation_deg, 2.0, 1e-6);
   // Mean over the instances: 0 (session 0), up to 0.2 m x 2 deg = 7 mm (1), up to 1 cm (2).
   EXPECT_GT(e.models[0].accuracy_m, 0.001);
   EXPECT_LT(e.models[0].accuracy_m, (0.007 + 0.01) / 3);
+}
+
+TEST(ObjectDbEval, MainRecallLeavesOverSegmentedFragmentsOut) {
+  const ObjectDbTruth truth = makeTruth();
+  auto segments = allSegments();
+  for (auto& s : segments) {
+    for (auto& m : s.segments) m.vertices = 1000;
+  }
+  // Session 1 sees a loose leg of chair_a as a small segment of its own, in no model.
+  change::SegmentMatch leg;
+  leg.segment_id = 8;
+  leg.object_id = 1;
+  leg.vertices = 50;
+  segments[1].segments.push_back(leg);
+  const objects::ObjectModel chair = perfectModel(1, 1, truth, {0, 1, 2});
+  const ObjectDbEvaluation e = eval::evaluateObjectDatabase(segments, truth, {chair});
+  // chair_a: 3 pairs between its main segments + the leg with sessions 0 and 2; others: 9.
+  EXPECT_EQ(e.pairs.same_object, 14u);
+  EXPECT_EQ(e.pairs.same_object_predicted, 3u);
+  EXPECT_EQ(e.pairs.same_object_main, 12u);
+  EXPECT_EQ(e.pairs.same_object_main_predicted, 3u);
+  EXPECT_DOUBLE_EQ(e.pairs.mainRecall(), 0.25);
+  ASSERT_EQ(e.models.size(), 1u);
+  EXPECT_EQ(e.models[0].pose_pairs, 3);
+  EXPECT_LT(e.models[0].pose_max_rotation_deg, 1e-3);
 }
 
 TEST(ObjectDbEval, FalsePositiveSegmentInAModelIsWrong) {

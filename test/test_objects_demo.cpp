@@ -85,7 +85,7 @@ TEST(ObjectsCommand, SimulatedSessionsWriteEveryOutputAndTheirScore) {
   const fs::path out(options.out_dir);
   const std::string json = readText(out / "objects.json");
   for (const char* key : {"\"models\": [", "\"segments\": [", "\"truth\": {", "\"precision\": ",
-                          "\"T_W_O\": [", "\"centroid_m\": [", "\"match_score\": "}) {
+                          "\"T_W_O\": [[", "\"centroid_m\": [", "\"match_score\": "}) {
     EXPECT_NE(json.find(key), std::string::npos) << key;
   }
   const objects::ObjectDatabase db = objects::loadObjectDatabase((out / "objects.sodb").string());

@@ -17,11 +17,13 @@ std::string vector3(const Eigen::Vector3d& v) {
   return "[" + jsonNumber(v.x()) + ", " + jsonNumber(v.y()) + ", " + jsonNumber(v.z()) + "]";
 }
 
-/// 4x4, row-major, one flat array.
+/// 4x4 as its rows (as the ground truth's objects.json writes T_W_O).
 std::string matrix4(const Eigen::Isometry3d& T) {
   std::string text = "[";
   for (int r = 0; r < 4; ++r) {
-    for (int c = 0; c < 4; ++c) text += (r || c ? ", " : "") + jsonNumber(T.matrix()(r, c));
+    text += r ? ", [" : "[";
+    for (int c = 0; c < 4; ++c) text += (c ? ", " : "") + jsonNumber(T.matrix()(r, c));
+    text += "]";
   }
   return text + "]";
 }

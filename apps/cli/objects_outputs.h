@@ -2,7 +2,7 @@
 // The object database over a change-detection run (`strata objects`, `strata demo`): built from
 // every session's discovered objects, then written as files:
 //   objects.json               models (id, area, merged observations, instances with session,
-//                              segment, world centroid, T_W_O row-major, match score), the
+//                              segment, world centroid, T_W_O as 4 rows, match score), the
 //                              outcome of every segment, and with simulator truth "truth"
 //   model_K.ply                each model's mesh in its model frame
 //   session_K_completed.ply    session K's static mesh plus every model placed at its instances

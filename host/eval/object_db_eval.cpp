@@ -16,6 +16,7 @@ struct SegmentRow {
   int session = 0;
   int object_id = 0;
   int model_id = 0;
+  bool main = false;  // the object's segment with the most vertices in its session
 };
 
 double angleFromTrace(double trace) {
@@ -28,6 +29,22 @@ double quantile(std::vector<double>& values, double q) {
   std::sort(values.begin(), values.end());
   const auto rank = static_cast<std::size_t>(std::ceil(q * double(values.size())));
   return values[std::min(values.size() - 1, rank > 0 ? rank - 1 : 0)];
+}
+
+/// Marks, among the rows just added for `session`, each object's segment with the most vertices.
+void markMainSegments(const change::SessionObjectEvaluation& session,
+                      std::vector<SegmentRow>& rows) {
+  const std::size_t first = rows.size() - session.segments.size();
+  std::map<int, std::size_t> best;  // object id -> index into session.segments
+  for (std::size_t k = 0; k < session.segments.size(); ++k) {
+    const change::SegmentMatch& m = session.segments[k];
+    if (m.object_id == 0) continue;
+    const auto it = best.find(m.object_id);
+    if (it == best.end() || m.vertices > session.segments[it->second].vertices) {
+      best[m.object_id] = k;
+    }
+  }
+  for (const auto& [id, k] : best) rows[first + k].main = true;
 }
 
 std::vector<SegmentRow> segmentRows(const std::vector<change::SessionObjectEvaluation>& segments,
@@ -44,8 +61,10 @@ std::vector<SegmentRow> segmentRows(const std::vector<change::SessionObjectEvalu
     for (const change::SegmentMatch& match : session.segments) {
       objects_of[{session.session, match.segment_id}] = match.object_id;
       const auto it = model_of.find({session.session, match.segment_id});
-      rows.push_back({session.session, match.object_id, it == model_of.end() ? 0 : it->second});
+      rows.push_back(
+          {session.session, match.object_id, it == model_of.end() ? 0 : it->second, false});
     }
+    markMainSegments(session, rows);
   }
   return rows;
 }
@@ -65,6 +84,10 @@ PairCounts countPairs(const std::vector<SegmentRow>& rows, const ObjectDbTruth& 
       if (known && a.object_id == b.object_id && a.session != b.session) {
         ++c.same_object;
         c.same_object_predicted += predicted;
+        if (a.main && b.main) {
+          ++c.same_object_main;
+          c.same_object_main_predicted += predicted;
+        }
       } else if (same_shape && a.object_id != b.object_id) {
         ++c.same_shape_other_object;
         c.same_shape_other_object_predicted += predicted;
@@ -74,34 +97,56 @@ PairCounts countPairs(const std::vector<SegmentRow>& rows, const ObjectDbTruth& 
   return c;
 }
 
-PoseErrors poseErrors(const std::vector<objects::ObjectModel>& models,
-                      const detail::SegmentObjects& objects_of, const ObjectDbTruth& truth) {
-  std::vector<double> translation, rotation;
-  for (const objects::ObjectModel& model : models) {
-    for (std::size_t i = 0; i < model.instances.size(); ++i) {
-      for (std::size_t j = i + 1; j < model.instances.size(); ++j) {
-        const objects::ObjectInstance& a = model.instances[i];
-        const objects::ObjectInstance& b = model.instances[j];
-        const int id = detail::instanceObject(objects_of, a);
-        if (id == 0 || id != detail::instanceObject(objects_of, b)) continue;
-        const auto k = static_cast<std::size_t>(id - 1);
-        const Eigen::Isometry3d& T_W_Oa = truth.sessions[std::size_t(a.session)].objects[k].T_W_O;
-        const Eigen::Isometry3d& T_W_Ob = truth.sessions[std::size_t(b.session)].objects[k].T_W_O;
-        const Eigen::Isometry3d estimated = a.T_W_M * b.T_W_M.inverse();  // b's place -> a's
-        const Eigen::Isometry3d actual = T_W_Oa * T_W_Ob.inverse();
-        const Mesh& mesh = truth.meshes_O[k];
-        Eigen::Vector3d centre_O = Eigen::Vector3d::Zero();
-        if (!mesh.vertices.empty()) {
-          Eigen::AlignedBox3d box;
-          for (const Eigen::Vector3f& v : mesh.vertices) box.extend(v.cast<double>());
-          centre_O = box.center();
-        }
-        const Eigen::Vector3d centre_W = T_W_Ob * centre_O;
-        translation.push_back((estimated * centre_W - actual * centre_W).norm());
-        // In a's object frame the error should be a symmetry of the shape (identity at best).
-        const Eigen::Matrix3d R_error = (T_W_Oa.inverse() * estimated * T_W_Ob).linear();
-        rotation.push_back(symmetricRotationErrorDeg(R_error, yawSymmetryOrder(truth.shapes[k])));
+struct PairError {
+  double translation_m = 0.0;
+  double rotation_deg = 0.0;
+};
+
+/// The errors of the model's instance pairs that lie on one true object.
+std::vector<PairError> modelPoseErrors(const objects::ObjectModel& model,
+                                       const detail::SegmentObjects& objects_of,
+                                       const ObjectDbTruth& truth) {
+  std::vector<PairError> errors;
+  for (std::size_t i = 0; i < model.instances.size(); ++i) {
+    for (std::size_t j = i + 1; j < model.instances.size(); ++j) {
+      const objects::ObjectInstance& a = model.instances[i];
+      const objects::ObjectInstance& b = model.instances[j];
+      const int id = detail::instanceObject(objects_of, a);
+      if (id == 0 || id != detail::instanceObject(objects_of, b)) continue;
+      const auto k = static_cast<std::size_t>(id - 1);
+      const Eigen::Isometry3d& T_W_Oa = truth.sessions[std::size_t(a.session)].objects[k].T_W_O;
+      const Eigen::Isometry3d& T_W_Ob = truth.sessions[std::size_t(b.session)].objects[k].T_W_O;
+      const Eigen::Isometry3d estimated = a.T_W_M * b.T_W_M.inverse();  // b's place -> a's
+      const Eigen::Isometry3d actual = T_W_Oa * T_W_Ob.inverse();
+      const Mesh& mesh = truth.meshes_O[k];
+      Eigen::Vector3d centre_O = Eigen::Vector3d::Zero();
+      if (!mesh.vertices.empty()) {
+        Eigen::AlignedBox3d box;
+        for (const Eigen::Vector3f& v : mesh.vertices) box.extend(v.cast<double>());
+        centre_O = box.center();
       }
+      const Eigen::Vector3d centre_W = T_W_Ob * centre_O;
+      // In a's object frame the error should be a symmetry of the shape (identity at best).
+      const Eigen::Matrix3d R_error = (T_W_Oa.inverse() * estimated * T_W_Ob).linear();
+      errors.push_back({(estimated * centre_W - actual * centre_W).norm(),
+                        symmetricRotationErrorDeg(R_error, yawSymmetryOrder(truth.shapes[k]))});
+    }
+  }
+  return errors;
+}
+
+PoseErrors poseErrors(const std::vector<objects::ObjectModel>& models,
+                      const detail::SegmentObjects& objects_of, const ObjectDbTruth& truth,
+                      std::vector<ModelEvaluation>& per_model) {
+  std::vector<double> translation, rotation;
+  for (std::size_t m = 0; m < models.size(); ++m) {
+    for (const PairError& pair : modelPoseErrors(models[m], objects_of, truth)) {
+      translation.push_back(pair.translation_m);
+      rotation.push_back(pair.rotation_deg);
+      ModelEvaluation& r = per_model[m];
+      ++r.pose_pairs;
+      r.pose_max_translation_m = std::max(r.pose_max_translation_m, pair.translation_m);
+      r.pose_max_rotation_deg = std::max(r.pose_max_rotation_deg, pair.rotation_deg);
     }
   }
   PoseErrors e;
@@ -210,7 +255,6 @@ ObjectDbEvaluation evaluateObjectDatabase(
   e.segments = rows.size();
   for (const SegmentRow& row : rows) e.segments_in_models += row.model_id != 0;
   e.pairs = countPairs(rows, truth);
-  e.pose = poseErrors(models, objects_of, truth);
   double completeness_sum = 0.0, accuracy_sum = 0.0;
   for (const objects::ObjectModel& model : models) {
     e.models.push_back(detail::evaluateModel(model, objects_of, truth, config));
@@ -223,6 +267,7 @@ ObjectDbEvaluation evaluateObjectDatabase(
     e.accuracy_instances += static_cast<std::size_t>(m.accuracy_instances);
     if (m.growth > e.growth_max) e.growth_max = m.growth, e.growth_max_model = m.model_id;
   }
+  e.pose = poseErrors(models, objects_of, truth, e.models);
   e.completeness_mean = e.completeness_models ? completeness_sum / e.completeness_models : 0.0;
   e.accuracy_mean_m = e.accuracy_instances ? accuracy_sum / e.accuracy_instances : 0.0;
   return e;

@@ -12,6 +12,8 @@
 //               segment in a model makes its pairs wrong);
 //   recall    = predicted-same pairs / pairs of segments of the SAME true object in different
 //               sessions (a segment the database skipped is in no model: its pairs are missed).
+//   main recall = the same over each object's main segment per session only (the one with the
+//               most vertices): matching apart from over-segmentation (a chair's loose leg).
 // Pose, over pairs (i, j) of instances of one model whose segments lie on the same true object:
 //   the estimated motion T_W_Mi T_W_Mj^-1 against the true T_W_Oi T_W_Oj^-1; translation error at
 //   the object's centre (its true mesh's bounding-box centre, on the symmetry axis), rotation
@@ -84,17 +86,22 @@ struct ObjectDbEvalConfig {
 };
 
 struct PairCounts {
-  std::size_t predicted_same = 0;           // pairs in one model
-  std::size_t predicted_same_correct = 0;   // of those, of the same shape
-  std::size_t same_object = 0;              // pairs of one true object, different sessions
-  std::size_t same_object_predicted = 0;    // of those, in one model
-  std::size_t same_shape_other_object = 0;  // pairs of identical, distinct objects
+  std::size_t predicted_same = 0;              // pairs in one model
+  std::size_t predicted_same_correct = 0;      // of those, of the same shape
+  std::size_t same_object = 0;                 // pairs of one true object, different sessions
+  std::size_t same_object_predicted = 0;       // of those, in one model
+  std::size_t same_object_main = 0;            // of same_object, between main segments
+  std::size_t same_object_main_predicted = 0;  // of those, in one model
+  std::size_t same_shape_other_object = 0;     // pairs of identical, distinct objects
   std::size_t same_shape_other_object_predicted = 0;  // of those, in one model (allowed)
   double precision() const {
     return predicted_same ? double(predicted_same_correct) / double(predicted_same) : 1.0;
   }
   double recall() const {
     return same_object ? double(same_object_predicted) / double(same_object) : 1.0;
+  }
+  double mainRecall() const {
+    return same_object_main ? double(same_object_main_predicted) / double(same_object_main) : 1.0;
   }
 };
 
@@ -121,6 +128,9 @@ struct ModelEvaluation {
   double growth = 0.0;        // area / true area (0 without an object)
   double accuracy_m = 0.0;    // mean over its instances on a true object
   int accuracy_instances = 0;
+  int pose_pairs = 0;  // its instance pairs on one true object
+  double pose_max_translation_m = 0.0;
+  double pose_max_rotation_deg = 0.0;
 };
 
 struct ObjectDbEvaluation {

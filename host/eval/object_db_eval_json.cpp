@@ -22,7 +22,9 @@ void writeModel(std::ostream& out, const ModelEvaluation& m) {
       << ", \"completeness\": " << jsonNumber(m.completeness)
       << ", \"true_area_m2\": " << jsonNumber(m.true_area_m2)
       << ", \"growth\": " << jsonNumber(m.growth)
-      << ", \"accuracy_m\": " << jsonNumber(m.accuracy_m) << "}";
+      << ", \"accuracy_m\": " << jsonNumber(m.accuracy_m) << ", \"pose_pairs\": " << m.pose_pairs
+      << ", \"pose_max_translation_m\": " << jsonNumber(m.pose_max_translation_m)
+      << ", \"pose_max_rotation_deg\": " << jsonNumber(m.pose_max_rotation_deg) << "}";
 }
 
 }  // namespace
@@ -40,6 +42,9 @@ std::string objectDbEvaluationJson(const ObjectDbEvaluation& e, int indent) {
       << ", \"predicted_same_correct\": " << p.predicted_same_correct
       << ", \"same_object\": " << p.same_object
       << ", \"same_object_predicted\": " << p.same_object_predicted
+      << ", \"main_recall\": " << jsonNumber(p.mainRecall())
+      << ", \"same_object_main\": " << p.same_object_main
+      << ", \"same_object_main_predicted\": " << p.same_object_main_predicted
       << ", \"same_shape_other_object\": " << p.same_shape_other_object
       << ", \"same_shape_other_object_predicted\": " << p.same_shape_other_object_predicted
       << "},\n"
@@ -67,13 +72,15 @@ std::string objectDbEvaluationJson(const ObjectDbEvaluation& e, int indent) {
 
 std::string describeObjectDbEvaluation(const ObjectDbEvaluation& e) {
   const PairCounts& p = e.pairs;
-  char text[512];
+  char text[640];
   std::snprintf(text, sizeof(text),
-                "pairs: precision %s, recall %s; pose (%zu pairs): median %.1f mm / %.2f deg, "
+                "pairs: precision %s, recall %s (main segments %s); pose (%zu pairs): median %.1f "
+                "mm / %.2f deg, "
                 "95th %.1f mm / %.2f deg; completeness %.2f (%zu models in 3+ sessions); "
                 "accuracy %.1f mm; growth at most %.2f",
                 percent(p.predicted_same_correct, p.predicted_same).c_str(),
-                percent(p.same_object_predicted, p.same_object).c_str(), e.pose.pairs,
+                percent(p.same_object_predicted, p.same_object).c_str(),
+                percent(p.same_object_main_predicted, p.same_object_main).c_str(), e.pose.pairs,
                 1000.0 * e.pose.median_translation_m, e.pose.median_rotation_deg,
                 1000.0 * e.pose.p95_translation_m, e.pose.p95_rotation_deg, e.completeness_mean,
                 e.completeness_models, 1000.0 * e.accuracy_mean_m, e.growth_max);
