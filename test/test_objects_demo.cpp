@@ -122,9 +122,10 @@ TEST(ObjectsDemo, DefaultRoomMeetsItsTargets) {
   for (const eval::ModelEvaluation& m : e.models) {
     std::printf(
         "[ objects ]   model %d: %s (%d), %d instances in %d sessions, area %.3f m2, "
-        "completeness %.2f, growth %.2f, accuracy %.1f mm\n",
+        "completeness %.2f, growth %.2f, accuracy %.1f mm, pose max %.1f mm / %.1f deg\n",
         m.model_id, m.name.c_str(), m.object_id, m.instances, m.sessions, m.area_m2, m.completeness,
-        m.growth, 1000.0 * m.accuracy_m);
+        m.growth, 1000.0 * m.accuracy_m, 1000.0 * m.pose_max_translation_m,
+        m.pose_max_rotation_deg);
   }
   EXPECT_GE(e.pairs.same_object, 10u) << "objects of the room move more than once";
   EXPECT_GE(e.pairs.precision(), 0.99);
