@@ -29,8 +29,8 @@ std::vector<const change::DiscoveredObject*> largestFirst(
 }
 
 void appendRefusal(std::string& refused, int model_id, const std::string& why) {
-  refused += (refused.empty() ? "" : "; ") + std::string("model ") + std::to_string(model_id) +
-             ": " + why;
+  refused +=
+      (refused.empty() ? "" : "; ") + std::string("model ") + std::to_string(model_id) + ": " + why;
 }
 
 /// Appends `mesh` (frame M) placed at T_W_M to `out`.
@@ -78,8 +78,7 @@ std::vector<SegmentOutcome> ObjectDatabase::addSession(
     int session, const TsdfMap& session_map, const change::LabelledSurface& surface,
     const std::vector<change::DiscoveredObject>& segments) {
   if (std::find(sessions_.begin(), sessions_.end(), session) != sessions_.end()) {
-    throw InputError("object database: session " + std::to_string(session) +
-                     " was already added");
+    throw InputError("object database: session " + std::to_string(session) + " was already added");
   }
   const float voxel_m = session_map.config().voxel_size_m;
   if (!sessions_.empty() && voxel_m != config_.registration.voxel_size_m) {
@@ -114,7 +113,8 @@ SegmentOutcome ObjectDatabase::addSegment(int session, const TsdfMap& session_ma
     return outcome;
   }
   const Match best = bestMatch(observation, session_map, outcome);
-  const float spacing_m = config_.observation.sample_spacing_voxels * config_.registration.voxel_size_m;
+  const float spacing_m =
+      config_.observation.sample_spacing_voxels * config_.registration.voxel_size_m;
   ObjectInstance instance;
   instance.session = session;
   instance.segment_id = segment.id;
@@ -125,6 +125,7 @@ SegmentOutcome ObjectDatabase::addSegment(int session, const TsdfMap& session_ma
     const Eigen::Isometry3d T_M_O = best.registration.T_target_source;
     if (config_.merge) {
       mergeObservation(model, observation, T_M_O, config_.model);
+      ++model.merged_observations;
       refreshModel(model, spacing_m, config_.model);
     }
     instance.T_W_M = observation.T_W_O * T_M_O.inverse();

@@ -39,16 +39,16 @@ struct DatabaseConfig {
 struct SegmentOutcome {
   int session = 0;
   int segment_id = 0;
-  int model_id = 0;        // 0: skipped
+  int model_id = 0;  // 0: skipped
   bool new_model = false;
-  std::string skipped;     // why it was skipped ("" otherwise)
-  int candidates = 0;      // models the prefilter let through
-  int registrations = 0;   // of those, registered
-  double score = 0.0;      // of the accepted match (1 for a new model)
+  std::string skipped;              // why it was skipped ("" otherwise)
+  int candidates = 0;               // models the prefilter let through
+  int registrations = 0;            // of those, registered
+  double score = 0.0;               // of the accepted match (1 for a new model)
   RegistrationResult registration;  // of the accepted match
   ConsistencyResult consistency;    // of the accepted match
-  std::string refused;     // summary of the candidates refused and why ("" when none)
-  double ms = 0.0;         // observation + matching + merge
+  std::string refused;              // summary of the candidates refused and why ("" when none)
+  double ms = 0.0;                  // observation + matching + merge
 };
 
 class ObjectDatabase {

@@ -76,8 +76,7 @@ class Reader {
  private:
   const std::uint8_t* take(std::size_t count, const char* field) {
     if (size_ - offset_ < count) {
-      fail(std::string("the payload ends inside ") + field + " at byte " +
-           std::to_string(offset_));
+      fail(std::string("the payload ends inside ") + field + " at byte " + std::to_string(offset_));
     }
     const std::uint8_t* p = data_ + offset_;
     offset_ += count;
@@ -136,8 +135,8 @@ ObjectModel getModel(Reader& r, const std::string& name) {
   const std::uint32_t instances = r.getCount(kInstanceBytes, "instance count");
   for (std::uint32_t i = 0; i < instances; ++i) model.instances.push_back(getInstance(r));
   const auto tsdf_bytes = r.get<std::uint32_t>("TSDF size");
-  model.tsdf = deserializeMap(r.getBytes(tsdf_bytes, "TSDF"),
-                              name + " model " + std::to_string(model.id));
+  model.tsdf =
+      deserializeMap(r.getBytes(tsdf_bytes, "TSDF"), name + " model " + std::to_string(model.id));
   return model;
 }
 
@@ -161,8 +160,8 @@ Reader checkedPayload(const std::string& bytes, const std::string& name) {
   const auto payload_bytes = header.get<std::uint32_t>("payload size");
   const auto checksum = header.get<std::uint64_t>("checksum");
   if (version == 0 || version > kObjectDatabaseFormatVersion) {
-    throw InputError(headerError(name, "was written by format version " +
-                                           std::to_string(version) + "; this build reads up to " +
+    throw InputError(headerError(name, "was written by format version " + std::to_string(version) +
+                                           "; this build reads up to " +
                                            std::to_string(kObjectDatabaseFormatVersion)));
   }
   const std::size_t present = bytes.size() - kHeaderBytes;
@@ -266,8 +265,8 @@ bool loadObjectDatabase(store::Store& store, ObjectDatabase& database,
                      std::to_string(blob->format_version) + "; this build reads up to " +
                      std::to_string(kObjectDatabaseFormatVersion));
   }
-  database = deserializeObjectDatabase(std::string(blob->bytes.begin(), blob->bytes.end()), name,
-                                       config);
+  database =
+      deserializeObjectDatabase(std::string(blob->bytes.begin(), blob->bytes.end()), name, config);
   return true;
 }
 

@@ -1,0 +1,149 @@
+// ObjectDatabase on sessions built from analytic maps: an L-shaped object seen partially in three
+// sessions at different poses and a box in one; a degenerate segment; a session added twice; the
+// database file (round trip, corrupt / truncated / newer / missing files, a failed save) and its
+// copy in the session store.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "change_test_scene.h"
+#include "core/error.h"
+#include "object_test_scene.h"
+#include "objects/object_database.h"
+
+namespace strata::objects {
+namespace {
+
+using test::Fixture;
+using test::kBox;
+using test::kL1;
+using test::kL2;
+using test::kL3;
+using test::kVoxel;
+using test::makeSession;
+using test::Session;
+using test::threeSessions;
+
+constexpr double kPi = 3.14159265358979323846;
+
+const ObjectInstance* instanceOf(const ObjectModel& model, int session) {
+  for (const ObjectInstance& i : model.instances) {
+    if (i.session == session) return &i;
+  }
+  return nullptr;
+}
+
+TEST(ObjectDatabase, OneObjectInThreeSessionsAndABoxMakeTwoModels) {
+  const Fixture& f = threeSessions();
+  for (const auto& session : f.outcomes) {
+    for (const SegmentOutcome& o : session) {
+      std::printf(
+          "session %d segment %d -> model %d%s, %d candidates, score %.3f, fitness %.3f, "
+          "agreement %.3f, %.0f ms%s%s\n",
+          o.session, o.segment_id, o.model_id, o.new_model ? " (new)" : "", o.candidates, o.score,
+          o.registration.fitness, o.consistency.agreement, o.ms,
+          o.refused.empty() ? "" : "; refused: ", o.refused.c_str());
+    }
+  }
+  ASSERT_EQ(f.database.models().size(), 2u);
+  EXPECT_EQ(f.database.sessions(), (std::vector<int>{1, 2, 3}));
+  const ObjectModel& l = f.database.models()[0];
+  const ObjectModel& box = f.database.models()[1];
+  ASSERT_EQ(l.instances.size(), 3u);
+  ASSERT_EQ(box.instances.size(), 1u);
+  EXPECT_EQ(box.instances[0].session, 2);
+  EXPECT_EQ(l.merged_observations, 3);
+
+  // Where the L stood: each instance against the truth relative to the founding one.
+  const ObjectInstance* first = instanceOf(l, 1);
+  ASSERT_NE(first, nullptr);
+  const Eigen::Isometry3d T_P_M = kL1.T_W_P().inverse() * first->T_W_M;
+  for (const auto& [session, thing] : {std::pair{2, kL2}, std::pair{3, kL3}}) {
+    const ObjectInstance* instance = instanceOf(l, session);
+    ASSERT_NE(instance, nullptr) << "session " << session;
+    const Eigen::Isometry3d error = (thing.T_W_P() * T_P_M).inverse() * instance->T_W_M;
+    const double angle_deg = Eigen::AngleAxisd(error.rotation()).angle() * 180.0 / kPi;
+    std::printf("session %d: pose error %.4f m, %.2f deg\n", session, error.translation().norm(),
+                angle_deg);
+    EXPECT_LT(error.translation().norm(), 0.01) << "session " << session;
+    EXPECT_LT(angle_deg, 2.0) << "session " << session;
+  }
+  // Merged from three partial views, the model has more surface than the model any one of them
+  // founds alone.
+  const std::vector<std::vector<test::Thing>> sessions = {{kL1}, {kL2, kBox}, {kL3}};
+  for (int session = 1; session <= 3; ++session) {
+    const Session s = makeSession(sessions[static_cast<std::size_t>(session - 1)], session);
+    ObjectDatabase alone;
+    alone.addSession(session, s.map, s.surface, s.segments);
+    const int segment = instanceOf(l, session)->segment_id;
+    for (const ObjectModel& m : alone.models()) {
+      if (m.instances[0].segment_id != segment) continue;
+      std::printf("session %d alone: %.3f m^2; merged model: %.3f m^2\n", session,
+                  m.surface_area_m2, l.surface_area_m2);
+      EXPECT_GT(l.surface_area_m2, 1.1f * m.surface_area_m2) << "session " << session;
+    }
+  }
+}
+
+TEST(ObjectDatabase, SessionObjectsPlacesEachModelAtItsInstances) {
+  const Fixture& f = threeSessions();
+  const Mesh mesh = f.database.sessionObjects(2);
+  const ObjectModel& l = f.database.models()[0];
+  const ObjectModel& box = f.database.models()[1];
+  EXPECT_EQ(mesh.triangles.size(), l.mesh_M.triangles.size() + box.mesh_M.triangles.size());
+  // Every vertex lies on the surface of the L or the box as they stood in session 2.
+  std::size_t off_surface = 0;
+  for (const Eigen::Vector3f& v : mesh.vertices) {
+    const Eigen::Vector3d p = v.cast<double>();
+    if (std::min(kL2.sdfW(p), kBox.sdfW(p)) > 2 * kVoxel) ++off_surface;
+  }
+  EXPECT_LT(off_surface, mesh.vertices.size() / 50);
+  EXPECT_TRUE(f.database.sessionObjects(7).empty());
+}
+
+TEST(ObjectDatabase, DegenerateSegmentIsSkippedWithItsReason) {
+  const Session s = makeSession({kL1}, 4);
+  change::DiscoveredObject tiny;
+  tiny.id = 9;
+  tiny.session = 4;
+  tiny.mesh = test::boxMesh(
+      Eigen::AlignedBox3d(Eigen::Vector3d(1.5, 1.5, 0.0), Eigen::Vector3d(1.54, 1.54, 0.04)));
+  tiny.vertex_count = tiny.mesh.vertices.size();
+  tiny.bbox =
+      Eigen::AlignedBox3f(Eigen::Vector3f(1.5f, 1.5f, 0.0f), Eigen::Vector3f(1.54f, 1.54f, 0.04f));
+  tiny.centroid = Eigen::Vector3f(1.52f, 1.52f, 0.02f);
+  std::vector<change::DiscoveredObject> segments = s.segments;
+  segments.push_back(tiny);
+  ObjectDatabase database;
+  const std::vector<SegmentOutcome> outcomes = database.addSession(4, s.map, s.surface, segments);
+  ASSERT_EQ(outcomes.size(), segments.size());
+  const SegmentOutcome& skipped = outcomes.back();
+  EXPECT_EQ(skipped.segment_id, 9);
+  EXPECT_EQ(skipped.model_id, 0);
+  EXPECT_NE(skipped.skipped.find("segment 9"), std::string::npos) << skipped.skipped;
+  EXPECT_EQ(database.models().size(), segments.size() - 1);
+}
+
+TEST(ObjectDatabase, AddingASessionTwiceIsRefusedAndChangesNothing) {
+  const Session s = makeSession({kL1}, 1);
+  ObjectDatabase database;
+  database.addSession(1, s.map, s.surface, s.segments);
+  const std::size_t models = database.models().size();
+  try {
+    database.addSession(1, s.map, s.surface, s.segments);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("session 1 was already added"), std::string::npos);
+  }
+  EXPECT_EQ(database.models().size(), models);
+  EXPECT_EQ(database.models()[0].instances.size(), 1u);
+}
+
+TEST(ObjectDatabase, ConfigIsValidated) {
+  DatabaseConfig config;
+  config.registration.ransac_iterations = 0;
+  EXPECT_THROW(ObjectDatabase{config}, InputError);
+}
+
+}  // namespace
+}  // namespace strata::objects
