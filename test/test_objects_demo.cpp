@@ -72,8 +72,10 @@ TEST(ObjectsCommand, SimulatedSessionsWriteEveryOutputAndTheirScore) {
   ASSERT_EQ(apps::runSim(sim_options), 0);
   testing::internal::GetCapturedStdout();
   apps::ObjectsOptions options;
-  for (int s = 0; s < 3; ++s)
-    options.sessions.push_back((sim / ("session_" + std::to_string(s))).string());
+  for (int s = 0; s < 3; ++s) {  // the last with a trailing slash, as shells complete folders
+    options.sessions.push_back((sim / ("session_" + std::to_string(s))).string() +
+                               (s == 2 ? "/" : ""));
+  }
   options.out_dir = freshDir("strata_objects_out").string();
   options.min_weight = 3.0f;
   options.quiet = true;

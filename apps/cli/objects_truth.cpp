@@ -66,12 +66,11 @@ std::shared_ptr<const SimTruth> findSimTruth(const std::vector<std::string>& ses
   std::vector<int> indices;
   int sessions = 0;
   for (const std::string& dir : session_dirs) {
-    const fs::path path(dir);
-    const int k = sessionIndex(path.lexically_normal().filename().empty()
-                                   ? path.lexically_normal().parent_path()
-                                   : path.lexically_normal());
-    const fs::path json = path.lexically_normal().parent_path() / "ground_truth" /
-                          ("session_" + std::to_string(k)) / "objects.json";
+    fs::path folder = fs::path(dir).lexically_normal();
+    if (folder.filename().empty()) folder = folder.parent_path();  // "sim/session_0/"
+    const int k = sessionIndex(folder);
+    const fs::path json =
+        folder.parent_path() / "ground_truth" / ("session_" + std::to_string(k)) / "objects.json";
     if (k < 0 || !fs::is_regular_file(json)) {
       why_not = "no simulator ground truth beside '" + dir + "'";
       return nullptr;
