@@ -259,6 +259,13 @@ TEST(ObjectDbEval, FalsePositiveSegmentInAModelIsWrong) {
   EXPECT_EQ(e.pairs.predicted_same, 3u);
   EXPECT_EQ(e.pairs.predicted_same_correct, 1u);
   EXPECT_EQ(e.pose.pairs, 1u) << "the ghost has no true pose";
+  ASSERT_EQ(e.segment_identities.size(), 13u);
+  const eval::SegmentIdentity& last = e.segment_identities.back();
+  EXPECT_EQ(last.session, 2);
+  EXPECT_EQ(last.segment_id, 9);
+  EXPECT_EQ(last.object_id, 0);
+  EXPECT_EQ(last.model_id, 1);
+  EXPECT_NE(eval::objectDbEvaluationJson(e).find("[2, 9, 0, 1]"), std::string::npos);
 }
 
 TEST(ObjectDbEval, BadInputIsNamed) {

@@ -14,6 +14,7 @@ constexpr double kPi = 3.14159265358979323846;
 /// One discovered segment: where it is, what it truly is, which model took it.
 struct SegmentRow {
   int session = 0;
+  int segment_id = 0;
   int object_id = 0;
   int model_id = 0;
   bool main = false;  // the object's segment with the most vertices in its session
@@ -61,8 +62,8 @@ std::vector<SegmentRow> segmentRows(const std::vector<change::SessionObjectEvalu
     for (const change::SegmentMatch& match : session.segments) {
       objects_of[{session.session, match.segment_id}] = match.object_id;
       const auto it = model_of.find({session.session, match.segment_id});
-      rows.push_back(
-          {session.session, match.object_id, it == model_of.end() ? 0 : it->second, false});
+      rows.push_back({session.session, match.segment_id, match.object_id,
+                      it == model_of.end() ? 0 : it->second, false});
     }
     markMainSegments(session, rows);
   }
@@ -253,7 +254,10 @@ ObjectDbEvaluation evaluateObjectDatabase(
   detail::SegmentObjects objects_of;
   const std::vector<SegmentRow> rows = segmentRows(segments, models, objects_of);
   e.segments = rows.size();
-  for (const SegmentRow& row : rows) e.segments_in_models += row.model_id != 0;
+  for (const SegmentRow& row : rows) {
+    e.segments_in_models += row.model_id != 0;
+    e.segment_identities.push_back({row.session, row.segment_id, row.object_id, row.model_id});
+  }
   e.pairs = countPairs(rows, truth);
   double completeness_sum = 0.0, accuracy_sum = 0.0;
   for (const objects::ObjectModel& model : models) {

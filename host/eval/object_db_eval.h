@@ -133,9 +133,18 @@ struct ModelEvaluation {
   double pose_max_rotation_deg = 0.0;
 };
 
+/// One discovered segment: the object it lies on and the model that took it.
+struct SegmentIdentity {
+  int session = 0;
+  int segment_id = 0;
+  int object_id = 0;  // 0: none (a false positive)
+  int model_id = 0;   // 0: in no model
+};
+
 struct ObjectDbEvaluation {
-  std::size_t segments = 0;            // discovered, all sessions
-  std::size_t segments_in_models = 0;  // instances of some model
+  std::vector<SegmentIdentity> segment_identities;  // every segment, by session
+  std::size_t segments = 0;                         // discovered, all sessions
+  std::size_t segments_in_models = 0;               // instances of some model
   PairCounts pairs;
   PoseErrors pose;
   std::vector<ModelEvaluation> models;  // by model id
@@ -154,7 +163,8 @@ ObjectDbEvaluation evaluateObjectDatabase(
     const std::vector<change::SessionObjectEvaluation>& segments, const ObjectDbTruth& truth,
     const std::vector<objects::ObjectModel>& models, const ObjectDbEvalConfig& config = {});
 
-/// The evaluation as one JSON object (no trailing newline), nested lines indented by `indent`.
+/// The evaluation as one JSON object (no trailing newline), nested lines indented by `indent`;
+/// "segments_as" lists every segment as [session, segment, object id, model id].
 std::string objectDbEvaluationJson(const ObjectDbEvaluation& evaluation, int indent = 0);
 
 /// "pairs: precision 100.0 % (12/12), recall 92.3 % (12/13); pose median 4.1 mm / 0.3 deg ..."

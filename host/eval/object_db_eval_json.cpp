@@ -61,7 +61,13 @@ std::string objectDbEvaluationJson(const ObjectDbEvaluation& e, int indent) {
       << ", \"accuracy_instances\": " << e.accuracy_instances
       << ", \"growth_max\": " << jsonNumber(e.growth_max)
       << ", \"growth_max_model\": " << e.growth_max_model << ",\n"
-      << pad << "\"models\": [";
+      << pad << "\"segments_as\": [";
+  for (std::size_t i = 0; i < e.segment_identities.size(); ++i) {
+    const SegmentIdentity& s = e.segment_identities[i];
+    out << (i ? ", " : "") << "[" << s.session << ", " << s.segment_id << ", " << s.object_id
+        << ", " << s.model_id << "]";
+  }
+  out << "],\n" << pad << "\"models\": [";
   for (std::size_t i = 0; i < e.models.size(); ++i) {
     out << (i ? ",\n" : "\n") << pad << "  ";
     writeModel(out, e.models[i]);
