@@ -1,5 +1,6 @@
 #pragma once
-// Internal to object_db_eval*.cpp: the per-model figures (completeness, accuracy, growth).
+// Internal to object_db_eval*.cpp: the per-model figures (completeness, accuracy, growth) and
+// the pose errors.
 #include <map>
 #include <utility>
 #include <vector>
@@ -17,6 +18,12 @@ int instanceObject(const SegmentObjects& segments, const objects::ObjectInstance
 /// Completeness, accuracy and growth of one model.
 ModelEvaluation evaluateModel(const objects::ObjectModel& model, const SegmentObjects& segments,
                               const ObjectDbTruth& truth, const ObjectDbEvalConfig& config);
+
+/// Pose errors over every model's instance pairs on one true object; fills the per-model pose
+/// figures of `per_model` (one per model, same order).
+PoseErrors poseErrors(const std::vector<objects::ObjectModel>& models,
+                      const SegmentObjects& objects_of, const ObjectDbTruth& truth,
+                      std::vector<ModelEvaluation>& per_model);
 
 /// Area of the mesh's triangles, leaving out those lying on the floor (every vertex at z <=
 /// floor_z_m) when `skip_floor` is set.
