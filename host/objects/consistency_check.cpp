@@ -13,31 +13,36 @@ struct Agreement {
   std::size_t surface = 0, compared = 0, agreeing = 0;
 };
 
-/// Test 1: the observation's near-surface voxels against the model's distances at the same place.
-Agreement sdfAgreement(const ObjectModel& model, const ObjectObservation& observation,
-                       const Eigen::Isometry3d& T_M_O, const ConsistencyConfig& config) {
-  const float obs_voxel_m = observation.tsdf.config().voxel_size_m;
-  const float band_m = config.agreement_band_voxels * obs_voxel_m;
+/// Test 1, one direction: the near-surface voxels of `from` against the distances of `to` at the
+/// same place (T_to_from maps from's frame into to's).
+Agreement sdfAgreement(const TsdfMap& from, const TsdfMap& to, const Eigen::Isometry3d& T_to_from,
+                       const ConsistencyConfig& config) {
+  const float from_voxel_m = from.config().voxel_size_m;
+  const float band_m = config.agreement_band_voxels * from_voxel_m;
   // The coarser grid bounds how well the two can agree.
   const float tolerance_m =
-      config.sdf_tolerance_voxels * std::max(obs_voxel_m, model.tsdf.config().voxel_size_m);
+      config.sdf_tolerance_voxels * std::max(from_voxel_m, to.config().voxel_size_m);
   Agreement out;
-  for (const BlockIndex& b : observation.tsdf.sortedBlockIndices()) {
-    const TsdfBlock& block = *observation.tsdf.findBlock(b);
+  for (const BlockIndex& b : from.sortedBlockIndices()) {
+    const TsdfBlock& block = *from.findBlock(b);
     for (int i = 0; i < kVoxelsPerBlock; ++i) {
       const TsdfVoxel& voxel = block[static_cast<std::size_t>(i)];
       if (voxel.weight < config.min_weight || voxel.weight <= 0.0f) continue;
       if (std::abs(voxel.tsdf_m) >= band_m) continue;
       ++out.surface;
       const GlobalVoxelIndex v = b * kBlockEdge + Eigen::Vector3i(i % 8, i / 8 % 8, i / 64);
-      const Eigen::Vector3d p_M = T_M_O * voxelCenter(v, obs_voxel_m).cast<double>();
-      const auto sample = sampleTsdf(model.tsdf, p_M.cast<float>(), config.min_weight);
+      const Eigen::Vector3d p_to = T_to_from * voxelCenter(v, from_voxel_m).cast<double>();
+      const auto sample = sampleTsdf(to, p_to.cast<float>(), config.min_weight);
       if (!sample) continue;
       ++out.compared;
       if (std::abs(sample->distance_m - voxel.tsdf_m) < tolerance_m) ++out.agreeing;
     }
   }
   return out;
+}
+
+double share(std::size_t part, std::size_t whole) {
+  return whole == 0 ? 0.0 : static_cast<double>(part) / static_cast<double>(whole);
 }
 
 /// Test 2: the model's surface samples placed in the session, against what the session saw free.
@@ -89,13 +94,14 @@ ConsistencyResult checkConsistency(const ObjectModel& model, const ObjectObserva
   config.validate();
   if (!T_M_O.matrix().allFinite()) throw InputError("checkConsistency: T_M_O is not finite");
   ConsistencyResult result;
-  const Agreement a = sdfAgreement(model, observation, T_M_O, config);
+  const Agreement a = sdfAgreement(observation.tsdf, model.tsdf, T_M_O, config);
   result.observation_surface_voxels = a.surface;
   result.compared_voxels = a.compared;
-  result.agreement =
-      a.compared == 0 ? 0.0 : static_cast<double>(a.agreeing) / static_cast<double>(a.compared);
-  result.overlap =
-      a.surface == 0 ? 0.0 : static_cast<double>(a.compared) / static_cast<double>(a.surface);
+  result.agreement = share(a.agreeing, a.compared);
+  result.overlap = share(a.compared, a.surface);
+  const Agreement m = sdfAgreement(model.tsdf, observation.tsdf, T_M_O.inverse(), config);
+  result.model_compared_voxels = m.compared;
+  result.model_agreement = share(m.agreeing, m.compared);
   freeSpace(model, observation.T_W_O * T_M_O.inverse(), session_map, config, result);
 
   std::ostringstream reason;
@@ -105,6 +111,10 @@ ConsistencyResult checkConsistency(const ObjectModel& model, const ObjectObserva
   } else if (result.agreement < config.min_agreement) {
     reason << "SDF agreement " << result.agreement << " < min_agreement " << config.min_agreement
            << " (" << a.agreeing << " of " << a.compared << " voxels agree)";
+  } else if (result.model_agreement < config.min_agreement) {
+    reason << "model SDF agreement " << result.model_agreement << " < min_agreement "
+           << config.min_agreement << " (" << m.agreeing << " of " << m.compared
+           << " model surface voxels agree)";
   } else if (result.free_space_violation > config.max_free_space_violation) {
     reason << "free space violation " << result.free_space_violation
            << " > max_free_space_violation " << config.max_free_space_violation << " ("
