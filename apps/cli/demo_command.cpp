@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <future>
 
+#include "cli/demo_objects.h"
 #include "cli/demo_report.h"
 #include "cli/diff_outputs.h"
 #include "cli/diff_pipeline.h"
@@ -182,6 +183,7 @@ DemoReport runDemoPipeline(const DemoOptions& o) {
     report.incremental_json = incrementalJson(incremental);
     report.incremental = incremental;
   }
+  if (o.objects) addDemoObjects(result, maps, world, o.out_dir, report);  // moved objects as models
   report.total_s = info.total_s = secondsSince(start);
   writeDemoReport(report, result, files, info, (out / "report.json").string());
   return report;
@@ -214,6 +216,9 @@ CLI::App* addDemoCommand(CLI::App& app, DemoOptions& o) {
   demo->add_option("--rest", o.rest_s,
                    "Seconds the camera stands still before each path (default: 1.5 with --vio, "
                    "0 without)");
+  demo->add_flag(
+      "--no-objects", [&o](std::int64_t) { o.objects = false; },
+      "Skip the last step: the object database over the sessions' moved objects");
   demo->add_option("--device", o.device, "Vulkan device index or name substring");
   demo->add_flag("--quiet", o.quiet, "No progress bar");
   demo->add_flag("--incremental", o.incremental,

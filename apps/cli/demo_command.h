@@ -43,6 +43,8 @@ struct DemoOptions {
   /// Seconds the camera stands still before each path (the VIO's standstill start); < 0: 1.5 with
   /// vio, 0 without.
   double rest_s = -1.0;
+  /// Build the object database over the sessions as the last step (cli/demo_objects.h).
+  bool objects = true;
   double restSeconds() const { return rest_s >= 0.0 ? rest_s : (vio.enabled ? 1.5 : 0.0); }
 };
 

@@ -132,6 +132,7 @@ void writeDemoReport(const DemoReport& report, const DiffResult& result, const D
     out << "  \"incremental\": " << report.incremental_json << ",\n";
   }
   if (report.alignment) out << "  \"alignment\": " << demoAlignJson(*report.alignment) << ",\n";
+  if (!report.objects_json.empty()) out << "  \"objects\": " << report.objects_json << ",\n";
   out << "  \"change_detection\": {\n";
   writeDiffJsonMembers(out, result, files, info, 4);
   out << "\n  }\n}\n";
@@ -175,6 +176,7 @@ std::string summarizeDemo(const DemoReport& report, const std::string& out_dir) 
   if (!report.incremental_summary.empty()) s << " " << report.incremental_summary;
   if (!report.sessions.empty() && report.sessions.front().vio) s << " " << summarizeVio(report);
   if (report.alignment) s << " " << summarizeDemoAlign(*report.alignment);
+  if (!report.objects_summary.empty()) s << " " << report.objects_summary;
   return s.str();
 }
 

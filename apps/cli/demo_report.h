@@ -11,6 +11,7 @@
 #include "cli/select_incremental.h"
 #include "eval/accuracy.h"
 #include "eval/evaluation_world.h"
+#include "eval/object_db_eval.h"
 
 namespace strata::apps {
 
@@ -42,6 +43,10 @@ struct DemoReport {
   std::string incremental_json;                  // the same as a JSON object, "" without
   std::optional<IncrementalResult> incremental;  // the figures behind both
   std::optional<DemoAlignResult> alignment;      // `--align`
+  /// The object database built over the sessions as the last step (cli/demo_objects.h).
+  std::string objects_summary;                      // one sentence, "" when not built
+  std::string objects_json;                         // report.json's "objects", "" when not built
+  std::optional<eval::ObjectDbEvaluation> objects;  // its score against the world's truth
 };
 
 /// Writes the report as JSON, atomically: the demo's figures, the evaluation and the change

@@ -12,6 +12,7 @@
 #include "cli/fuse_command.h"
 #include "cli/map_command.h"
 #include "cli/mesh_command.h"
+#include "cli/objects_command.h"
 #include "cli/odometry_command.h"
 #include "cli/select_command.h"
 #include "cli/sim_command.h"
@@ -36,7 +37,7 @@ int runDefault() {
   std::printf(
       "strata: no command given; running the multi-session demo on the shipped room "
       "(see `strata --help` for fuse, sim, demo, diff, drift, mesh, esdf, select, eval-trajectory, "
-      "map, odometry, align, devices)\n");
+      "map, odometry, align, objects, devices)\n");
   return strata::apps::runDemo(strata::apps::DemoOptions{});
 }
 
@@ -69,6 +70,8 @@ int main(int argc, char** argv) {
   CLI::App* odometry = strata::apps::addOdometryCommand(app, odometry_options);
   strata::apps::AlignOptions align_options;
   CLI::App* align = strata::apps::addAlignCommand(app, align_options);
+  strata::apps::ObjectsOptions objects_options;
+  CLI::App* objects = strata::apps::addObjectsCommand(app, objects_options);
   CLI::App* devices = app.add_subcommand("devices", "List the Vulkan devices");
   try {
     app.parse(argc, argv);
@@ -87,6 +90,7 @@ int main(int argc, char** argv) {
   if (map->parsed()) return strata::apps::runMap(map_options);
   if (odometry->parsed()) return strata::apps::runOdometry(odometry_options);
   if (align->parsed()) return strata::apps::runAlign(align_options);
+  if (objects->parsed()) return strata::apps::runObjects(objects_options);
   if (devices->parsed()) return listDevices();
   return runDefault();
 }

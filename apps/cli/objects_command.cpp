@@ -1,0 +1,145 @@
+#include "cli/objects_command.h"
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+
+#include "cli/diff_pipeline.h"
+#include "cli/objects_outputs.h"
+#include "cli/objects_truth.h"
+#include "core/error.h"
+
+namespace strata::apps {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// Every `stride`-th frame of a dataset.
+class EveryNthFrame : public Dataset {
+ public:
+  EveryNthFrame(std::unique_ptr<Dataset> inner, std::size_t stride)
+      : inner_(std::move(inner)), stride_(stride) {}
+  std::string name() const override { return inner_->name(); }
+  std::size_t size() const override { return (inner_->size() + stride_ - 1) / stride_; }
+  CameraIntrinsics intrinsics() const override { return inner_->intrinsics(); }
+  RgbdFrame load(std::size_t index) const override { return inner_->load(index * stride_); }
+
+ private:
+  std::unique_ptr<Dataset> inner_;
+  std::size_t stride_;
+};
+
+/// Opens every session before any work, so a bad path fails at once, naming it.
+std::vector<std::unique_ptr<Dataset>> openSessions(const ObjectsOptions& o) {
+  for (const std::string& path : o.sessions) {
+    if (!fs::is_directory(path)) {
+      throw InputError("session '" + path + "' is not a folder (" +
+                       (fs::exists(path) ? "a file" : "it does not exist") + ")");
+    }
+  }
+  if (o.sessions.size() < 2) {
+    throw InputError("objects needs at least two sessions (objects are found where they moved)");
+  }
+  if (o.out_dir.empty()) throw InputError("--out DIR is required");
+  if (o.frames < 0) throw InputError("--frames must be >= 0, not " + std::to_string(o.frames));
+  std::vector<std::unique_ptr<Dataset>> sessions;
+  for (const std::string& path : o.sessions) sessions.push_back(openDataset(path, {}));
+  return sessions;
+}
+
+/// The stride that spreads about `frames` frames over the longest session.
+std::size_t strideFor(const std::vector<std::unique_ptr<Dataset>>& sessions, int frames) {
+  std::size_t longest = 0;
+  for (const auto& s : sessions) longest = std::max(longest, s->size());
+  if (frames <= 0 || longest <= static_cast<std::size_t>(frames)) return 1;
+  return (longest + static_cast<std::size_t>(frames) - 1) / static_cast<std::size_t>(frames);
+}
+
+void runChecked(const ObjectsOptions& o) {
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<std::unique_ptr<Dataset>> inputs = openSessions(o);
+  std::string why_not;
+  const auto truth = findSimTruth(o.sessions, o.world, why_not);
+  fs::create_directories(o.out_dir);
+  const std::size_t stride = strideFor(inputs, o.frames);
+  change::ChangeConfig change_config;
+  change_config.min_weight = o.min_weight;
+  change_config = change_config.forSubsampling(static_cast<int>(stride));
+  const MapConfig map_config = changeMapConfig(o.voxel_size_m);
+  vk::ContextOptions context_options;
+  context_options.device_selector = o.device;
+  const auto context = vk::Context::create(context_options);
+  DiffPipeline pipeline(*context, map_config, change_config, change::ObjectConfig{});
+  std::vector<std::unique_ptr<Dataset>> sessions;
+  std::size_t total = 0, done = 0;
+  for (auto& input : inputs) {
+    sessions.push_back(std::make_unique<EveryNthFrame>(std::move(input), stride));
+    total += sessions.back()->size();
+  }
+  ProgressBar progress("objects: fuse sessions", total, !o.quiet);
+  for (std::size_t i = 0; i < sessions.size(); ++i) {
+    pipeline.addSession(*sessions[i], o.sessions[i], progress, done);
+  }
+  progress.finish();
+  if (!o.quiet) std::fprintf(stderr, "objects: discovering and matching objects...\n");
+  std::vector<TsdfMap> maps;
+  const DiffResult result = pipeline.finish(&maps);
+  const ObjectsRun run = buildObjectDatabase(result, maps);
+  std::string truth_json, truth_summary = "no truth: " + why_not;
+  if (truth) {
+    const eval::ObjectDbEvaluation e = evaluateObjectsRun(*truth, result, run);
+    truth_json = eval::objectDbEvaluationJson(e, 2);
+    truth_summary = "against the truth of world '" + truth->world->name() +
+                    "': " + eval::describeObjectDbEvaluation(e);
+  }
+  const ObjectsFiles files = writeObjectsFiles(run, result, o.out_dir, truth_json);
+  const double total_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::printf(
+      "Object database over %zu sessions (%zu frames each at most, %.0f s): %s; %s. "
+      "Wrote %s, %zu model meshes, %s and %s.\n",
+      result.sessions.size(), sessions.front()->size(), total_s, summarizeObjects(run).c_str(),
+      truth_summary.c_str(), files.json.c_str(), files.models.size(), files.database.c_str(),
+      files.contact_sheet.c_str());
+}
+
+}  // namespace
+
+CLI::App* addObjectsCommand(CLI::App& app, ObjectsOptions& o) {
+  CLI::App* cmd = app.add_subcommand(
+      "objects", "Object database over sessions: moved objects matched, merged into models");
+  cmd->add_option("sessions", o.sessions,
+                  "Session folders (TUM RGB-D, e.g. from `strata sim`), oldest first")
+      ->required();
+  cmd->add_option("--out", o.out_dir, "Output folder")->required();
+  cmd->add_option("--voxel", o.voxel_size_m, "Voxel edge, metres")->capture_default_str();
+  cmd->add_option("--frames", o.frames, "Frames per session, spread over it (0: all)")
+      ->capture_default_str();
+  cmd->add_option("--min-weight", o.min_weight,
+                  "Recorded frames a voxel must be seen in to count as observed")
+      ->capture_default_str();
+  cmd->add_option("--world", o.world,
+                  "World file of the sessions' ground truth (default: the name it records)");
+  cmd->add_option("--device", o.device, "Vulkan device index or name substring");
+  cmd->add_flag("--quiet", o.quiet, "No progress bar");
+  return cmd;
+}
+
+int runObjects(const ObjectsOptions& o) {
+  try {
+    runChecked(o);
+    return 0;
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "strata objects: input error: %s\n", e.what());
+    return 2;
+  } catch (const DeviceError& e) {
+    std::fprintf(stderr, "strata objects: device error: %s\n", e.what());
+    return 3;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "strata objects: error: %s\n", e.what());
+    return 1;
+  }
+}
+
+}  // namespace strata::apps

@@ -1,0 +1,19 @@
+#pragma once
+// The contact sheet of an object database: one shaded rendering per model (its TSDF raycast from
+// above and aside, coloured by the model's colour), labelled with its id and instance count.
+#include <vector>
+
+#include "core/types.h"
+#include "objects/object_model.h"
+
+namespace strata::apps {
+
+/// A view of one model's TSDF, `size_px` square, from a fixed direction (front-left, 35 degrees
+/// above the horizon) at a distance that fits its bounding sphere.
+ColorImage renderModelView(const objects::ObjectModel& model, int size_px = 200);
+
+/// Every model's view in a grid (at most 6 columns), each labelled "MODEL id" and
+/// "N INSTANCES, M MERGED"; a short notice when there is none.
+ColorImage renderModelSheet(const std::vector<objects::ObjectModel>& models, int size_px = 200);
+
+}  // namespace strata::apps
