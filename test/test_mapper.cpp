@@ -4,6 +4,7 @@
 // ChangeDetector driven directly); bad input.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -238,6 +239,7 @@ TEST(Mapper, ReleasedSessionsKeepDeviceMemoryFlatAndFindTheSameObjects) {
     kept_results = runSessions(keeping, before, after, 4);
   }
   config.release_ended_sessions = true;
+  config.keep_session_evidence = true;  // taken before the layers are released
   Mapper releasing(config, test::sharedContext());
   std::vector<std::uint64_t> device_bytes;
   const std::vector<SessionResult> results =
@@ -258,6 +260,24 @@ TEST(Mapper, ReleasedSessionsKeepDeviceMemoryFlatAndFindTheSameObjects) {
   }
   EXPECT_FALSE(results[1].objects.empty()) << "the box appears in every odd session";
   EXPECT_THROW(releasing.changeDetector().sessionMap(0), InputError) << "released";
+  // The evidence the object database needs: the session's map and its labelled surface.
+  EXPECT_FALSE(kept_results[1].session_map.has_value()) << "only kept when asked for";
+  for (std::size_t s = 0; s < results.size(); ++s) {
+    ASSERT_TRUE(results[s].session_map.has_value()) << "session " << s;
+    EXPECT_GT(results[s].session_map->blockCount(), 0u) << "session " << s;
+    const change::LabelledSurface& surface = results[s].surface;
+    EXPECT_FALSE(surface.mesh.empty()) << "session " << s;
+    ASSERT_EQ(surface.face_dynamic.size(), surface.mesh.triangles.size()) << "session " << s;
+    const auto dynamic_faces =
+        std::count(surface.face_dynamic.begin(), surface.face_dynamic.end(), true);
+    if (results[s].objects.empty()) continue;
+    std::size_t object_faces = 0;
+    for (const change::DiscoveredObject& o : results[s].objects) {
+      object_faces += o.mesh.triangles.size();
+    }
+    EXPECT_GE(static_cast<std::size_t>(dynamic_faces), object_faces)
+        << "session " << s << ": every object face is a dynamic face of the surface";
+  }
 }
 
 TEST(Mapper, ASavedMapAsASessionFindsWhatFusingTheSessionFinds) {

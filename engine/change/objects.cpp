@@ -113,9 +113,13 @@ std::vector<DiscoveredObject> extractObjects(const TsdfMap& session_map,
 }
 
 std::vector<DiscoveredObject> sessionObjects(ChangeDetector& detector, int session,
-                                             const ObjectConfig& config) {
-  return extractObjects(detector.sessionMap(session), detector.sessionDynamic(session), config,
-                        session);
+                                             const ObjectConfig& config, TsdfMap* session_map,
+                                             LabelledSurface* surface) {
+  TsdfMap map = detector.sessionMap(session);
+  std::vector<DiscoveredObject> objects = extractObjects(
+      map, detector.sessionDynamic(session), config, session, nullptr, surface);
+  if (session_map != nullptr) *session_map = std::move(map);
+  return objects;
 }
 
 }  // namespace strata::change

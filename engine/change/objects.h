@@ -91,7 +91,10 @@ class ChangeDetector;
 
 /// The objects of an ended session of `detector` against its current static map: downloads the
 /// session's map and dynamic part (explicit device->host copies) and runs extractObjects.
+/// `session_map` and `surface` (optional) receive the downloaded map and the labelled surface.
 std::vector<DiscoveredObject> sessionObjects(ChangeDetector& detector, int session,
-                                             const ObjectConfig& config = {});
+                                             const ObjectConfig& config = {},
+                                             TsdfMap* session_map = nullptr,
+                                             LabelledSurface* surface = nullptr);
 
 }  // namespace strata::change

@@ -83,6 +83,17 @@ int Mapper::beginSession() {
   return sessions_ - 1;
 }
 
+void Mapper::discoverObjects(SessionResult& result) {
+  if (!config_.keep_session_evidence) {
+    result.objects = change::sessionObjects(*impl_->detector, result.session, config_.objects);
+    return;
+  }
+  TsdfMap session_map(config_.map);
+  result.objects = change::sessionObjects(*impl_->detector, result.session, config_.objects,
+                                          &session_map, &result.surface);
+  result.session_map = std::move(session_map);
+}
+
 SessionResult Mapper::endSession() {
   if (!session_open_) throw InputError("endSession: no session is open");
   SessionResult result;
@@ -92,7 +103,7 @@ SessionResult Mapper::endSession() {
   if (impl_->detector) {
     result.update = impl_->detector->endSession(result.session);
     if (config_.discover_objects) {
-      result.objects = change::sessionObjects(*impl_->detector, result.session, config_.objects);
+      discoverObjects(result);
     }
     if (config_.release_ended_sessions) impl_->detector->releaseSession(result.session);
   }
@@ -107,7 +118,7 @@ SessionResult Mapper::addSessionMap(const TsdfMap& map) {
   ++sessions_;
   result.update = impl_->detector->endSession(result.session);
   if (config_.discover_objects) {
-    result.objects = change::sessionObjects(*impl_->detector, result.session, config_.objects);
+    discoverObjects(result);
   }
   impl_->esdf_fresh = false;  // S changed in every block the map holds
   return result;

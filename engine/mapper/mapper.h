@@ -20,6 +20,7 @@
 // Thread safety: not thread safe; one Mapper per thread (the context may be shared only when
 // calls never overlap).
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -62,6 +63,10 @@ struct SessionResult {
   std::vector<change::DiscoveredObject> objects;  // moved or added, world frame; empty w/o change
   change::ChangeUpdateStats update;               // stage times of the merge (change detection)
   std::size_t frames = 0;                         // fused in the session
+  /// With MapperConfig::keep_session_evidence (and objects discovered): the session's own map
+  /// (world frame) and its surface with the face labels the objects were cut from; else empty.
+  std::optional<TsdfMap> session_map;
+  change::LabelledSurface surface;
 };
 
 /// What trackAndIntegrate() did with one frame.
@@ -184,6 +189,8 @@ class Mapper {
  private:
   struct Impl;
   void openSessionIfNeeded();
+  /// Objects of the ended session result.session (and its evidence when kept).
+  void discoverObjects(SessionResult& result);
   DeviceFusion& liveFusion();
   void requireEsdf(const char* what) const;
   const EsdfQuery& query() const;

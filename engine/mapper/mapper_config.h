@@ -41,6 +41,11 @@ struct MapperConfig {
   /// keeps its device memory bounded. Off: every session keeps a TSDF and a label layer for
   /// later questions about it (strata diff asks against the final static estimate).
   bool release_ended_sessions = false;
+  /// With discover_objects: endSession() and addSessionMap() also return the session's own map
+  /// (host copy) and its labelled surface (SessionResult::session_map, surface), what the
+  /// object database needs to turn each discovered object into a model. Costs a download of the
+  /// session layer, which object discovery makes anyway.
+  bool keep_session_evidence = false;
 
   /// scoreKeyframe(): raycast-reprojection metrics of a frame against the map before it.
   bool keyframe_scoring = false;
