@@ -27,6 +27,11 @@ void keepChange(const lcm::ReceiveBuffer*, const std::string&, const change_even
   std::lock_guard<std::mutex> lock(out->mutex);
   out->change_events.push_back(*m);
 }
+void keepObjects(const lcm::ReceiveBuffer*, const std::string&, const object_update_t* m,
+                 MapperOutputs* out) {
+  std::lock_guard<std::mutex> lock(out->mutex);
+  out->object_updates.push_back(*m);
+}
 void keepScore(const lcm::ReceiveBuffer*, const std::string&, const keyframe_score_t* m,
                MapperOutputs* out) {
   std::lock_guard<std::mutex> lock(out->mutex);
@@ -95,6 +100,7 @@ void InProcessMapper::subscribeOutputs(const apps::MapperOptions& options) {
   lcm_.subscribeFunction(options.channels.mesh, &keepMesh, &outputs_);
   lcm_.subscribeFunction(options.channels.stats, &keepStats, &outputs_);
   lcm_.subscribeFunction(options.channels.change, &keepChange, &outputs_);
+  lcm_.subscribeFunction(options.channels.objects, &keepObjects, &outputs_);
   lcm_.subscribeFunction(options.channels.esdf, &countEsdf, &outputs_);
   lcm_.subscribeFunction(options.channels.keyframe, &keepScore, &outputs_);
 }

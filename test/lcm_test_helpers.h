@@ -19,6 +19,7 @@
 #include "strata/keyframe_score_t.hpp"
 #include "strata/map_stats_t.hpp"
 #include "strata/mesh_update_t.hpp"
+#include "strata/object_update_t.hpp"
 
 namespace strata::test {
 
@@ -32,6 +33,7 @@ struct MapperOutputs {
   std::vector<mesh_update_t> mesh_updates;
   std::vector<map_stats_t> stats;
   std::vector<change_event_t> change_events;
+  std::vector<object_update_t> object_updates;
   std::vector<keyframe_score_t> keyframe_scores;
   int esdf_slices = 0;
 

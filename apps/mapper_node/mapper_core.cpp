@@ -1,12 +1,18 @@
 #include "mapper_node/mapper_core.h"
 
+#include <algorithm>
 #include <chrono>
+#include <filesystem>
+#include <map>
 
 #include "core/error.h"
 #include "lcm/block_mesh_msg.h"
 #include "lcm/convert_change.h"
+#include "lcm/convert_objects.h"
 #include "lcm/esdf_slice_msg.h"
 #include "lcm/lcm_time.h"
+#include "objects/object_database.h"
+#include "objects/object_database_file.h"
 
 namespace strata::apps {
 namespace {
@@ -38,6 +44,7 @@ MapperConfig mapperConfig(const MapperOptions& options) {
     config.map = change_map;
     config.change_detection = true;
     config.release_ended_sessions = true;  // a live mapper runs session after session
+    config.keep_session_evidence = options.object_database;
     config.change.min_weight = options.change_min_weight;
     config.change.difference_threshold_m =
         options.change_threshold_voxels * options.map.voxel_size_m;
@@ -48,12 +55,28 @@ MapperConfig mapperConfig(const MapperOptions& options) {
   return config;
 }
 
-MapperCore::MapperCore(vk::Context& context, const MapperOptions& options,
-                       const TsdfMap* start_map)
+MapperCore::MapperCore(vk::Context& context, const MapperOptions& options, const TsdfMap* start_map)
     : context_(context),
       options_(validated(options)),
       mapper_(start_map ? Mapper::fromMap(*start_map, context, mapperConfig(options_))
-                        : std::make_unique<Mapper>(mapperConfig(options_), context)) {}
+                        : std::make_unique<Mapper>(mapperConfig(options_), context)) {
+  if (!options_.change_detection || !options_.object_database) return;
+  const std::string path = options_.objectsFile();
+  std::error_code error;
+  if (!path.empty() && std::filesystem::exists(path, error)) {
+    try {
+      objects_ = std::make_unique<objects::ObjectDatabase>(objects::loadObjectDatabase(path));
+    } catch (const InputError& e) {
+      throw InputError(std::string("cannot resume the object database (left untouched; move it "
+                                   "away to start an empty one): ") +
+                       e.what());
+    }
+    for (const int s : objects_->sessions())
+      next_object_session_ = std::max(next_object_session_, s + 1);
+  } else {
+    objects_ = std::make_unique<objects::ObjectDatabase>();
+  }
+}
 
 MapperCore::~MapperCore() = default;
 
@@ -124,7 +147,40 @@ std::vector<change_event_t> MapperCore::endSession(std::int64_t utime) {
     events.push_back(
         lcm_io::encodeChangeEvent(object, static_cast<int>(result.objects.size()), utime));
   }
+  if (objects_) addToObjectDatabase(result, utime);
   return events;
+}
+
+void MapperCore::addToObjectDatabase(const SessionResult& result, std::int64_t utime) {
+  object_updates_.clear();
+  if (!result.session_map) return;  // no evidence kept: nothing to build models from
+  const int session = next_object_session_++;
+  const std::vector<objects::SegmentOutcome> outcomes =
+      objects_->addSession(session, *result.session_map, result.surface, result.objects);
+  std::map<int, bool> touched;  // model id -> founded by this session
+  for (const objects::SegmentOutcome& o : outcomes) {
+    if (o.model_id > 0) touched[o.model_id] = touched[o.model_id] || o.new_model;
+  }
+  int index = 0;
+  for (const auto& [id, founded] : touched) {
+    const objects::ObjectModel* model = objects_->findModel(id);
+    if (model == nullptr) continue;
+    object_updates_.push_back(lcm_io::encodeObjectUpdate(*model, session, founded, ++index,
+                                                         static_cast<int>(touched.size()), utime));
+  }
+}
+
+std::vector<object_update_t> MapperCore::takeObjectUpdates() {
+  std::vector<object_update_t> updates;
+  updates.swap(object_updates_);
+  return updates;
+}
+
+bool MapperCore::saveObjects() {
+  const std::string path = options_.objectsFile();
+  if (!objects_ || path.empty()) return false;
+  objects::saveObjectDatabase(*objects_, path);
+  return true;
 }
 
 TsdfMap MapperCore::downloadMap() { return mapper_->download(); }

@@ -9,14 +9,19 @@
 #include <string>
 #include <vector>
 
-#include "mapper_node/mapper_options.h"
 #include "lcm/frame_assembler.h"
 #include "mapper/mapper.h"
+#include "mapper_node/mapper_options.h"
 #include "strata/change_event_t.hpp"
 #include "strata/esdf_slice_t.hpp"
 #include "strata/keyframe_score_t.hpp"
 #include "strata/mesh_update_t.hpp"
+#include "strata/object_update_t.hpp"
 #include "vk/vk.h"
+
+namespace strata::objects {
+class ObjectDatabase;
+}
 
 namespace strata::apps {
 
@@ -51,6 +56,15 @@ class MapperCore {
   /// Ends the open session; its discovered objects as events. Throws InputError when none is open.
   std::vector<change_event_t> stopSession(std::int64_t utime);
 
+  /// The object database's updates of the last session end (one per model it created or
+  /// extended), handed over once. Empty without the database.
+  std::vector<object_update_t> takeObjectUpdates();
+  /// Writes the object database atomically to options.objectsFile(); false when there is no
+  /// database or no file. Throws Error when the write fails (the previous file stays).
+  bool saveObjects();
+  /// nullptr without the database.
+  const objects::ObjectDatabase* objectDatabase() const { return objects_.get(); }
+
   /// Downloads the map and writes it atomically (map_file.h).
   void saveMap(const std::string& path);
   /// Host copy of the live map (device -> host).
@@ -70,6 +84,7 @@ class MapperCore {
 
  private:
   std::vector<change_event_t> endSession(std::int64_t utime);
+  void addToObjectDatabase(const SessionResult& result, std::int64_t utime);
 
   vk::Context& context_;
   MapperOptions options_;
@@ -80,6 +95,9 @@ class MapperCore {
   double last_fuse_ms_ = 0.0;
   double total_fuse_ms_ = 0.0;
   int session_ = -1;
+  std::unique_ptr<objects::ObjectDatabase> objects_;
+  int next_object_session_ = 0;  // the database's session numbers continue across restarts
+  std::vector<object_update_t> object_updates_;
 };
 
 }  // namespace strata::apps

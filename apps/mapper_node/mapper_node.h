@@ -63,6 +63,7 @@ class MapperNode {
   void publishMesh(bool full);
   void publishEsdf();
   void publishChangeEvents(const std::vector<change_event_t>& events);
+  void publishObjectUpdates();
   bool saveOnExit();
   void log(const std::string& line) const;
 

@@ -3,9 +3,10 @@
 #include <cstdio>
 #include <thread>
 
-#include "mapper_node/mapper_node.h"
 #include "core/error.h"
 #include "lcm/lcm_time.h"
+#include "mapper_node/mapper_node.h"
+#include "objects/object_database.h"
 
 namespace strata::apps {
 namespace {
@@ -135,10 +136,12 @@ void MapperNode::runCommand(const command_t& command) {
   switch (command.command) {
     case command_t::START_SESSION:
       publishChangeEvents(core_.startSession(now));
+      publishObjectUpdates();
       break;
     case command_t::STOP_SESSION:
       publishMesh(false);
       publishChangeEvents(core_.stopSession(now));
+      publishObjectUpdates();
       break;
     case command_t::SAVE_MAP: {
       const std::string path = command.argument.empty() ? options_.map_path : command.argument;
@@ -171,6 +174,25 @@ void MapperNode::publishChangeEvents(const std::vector<change_event_t>& events) 
   for (const change_event_t& event : events) output_.publish(options_.channels.change, &event);
   if (!options_.quiet) {
     log("session ended: " + std::to_string(events.size()) + " changed objects published");
+  }
+}
+
+void MapperNode::publishObjectUpdates() {
+  const std::vector<object_update_t> updates = core_.takeObjectUpdates();
+  for (const object_update_t& update : updates) output_.publish(options_.channels.objects, &update);
+  const objects::ObjectDatabase* database = core_.objectDatabase();
+  if (database == nullptr) return;
+  if (!options_.quiet) {
+    log("object database: " + std::to_string(updates.size()) + " models created or extended, " +
+        std::to_string(database->models().size()) + " in all");
+  }
+  // A failed write leaves the previous file and the database in memory: the next session end
+  // (or the exit) tries again.
+  try {
+    if (core_.saveObjects() && !options_.quiet)
+      log("saved the object database to " + options_.objectsFile());
+  } catch (const std::exception& e) {
+    log("could not save the object database to " + options_.objectsFile() + ": " + e.what());
   }
 }
 
@@ -212,12 +234,19 @@ map_stats_t MapperNode::stats(std::int64_t utime) const {
 }
 
 bool MapperNode::saveOnExit() {
-  if (options_.map_path.empty()) return true;
+  bool saved = true;
+  try {
+    if (core_.saveObjects()) log("saved the object database to " + options_.objectsFile());
+  } catch (const std::exception& e) {
+    log("could not save the object database to " + options_.objectsFile() + ": " + e.what());
+    saved = false;
+  }
+  if (options_.map_path.empty()) return saved;
   try {
     core_.saveMap(options_.map_path);
     log("saved the map (" + std::to_string(core_.framesFused()) + " frames fused) to " +
         options_.map_path);
-    return true;
+    return saved;
   } catch (const std::exception& e) {
     log("could not save the map to " + options_.map_path + ": " + e.what());
     return false;

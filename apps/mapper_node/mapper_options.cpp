@@ -2,6 +2,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cmath>
+#include <filesystem>
 
 #include "core/error.h"
 
@@ -13,6 +14,11 @@ MapConfig MapperOptions::defaultMapperMapConfig() {
   // NOTE: planners read the ESDF in free space, which only allocated blocks carry.
   config.allocate_free_space = true;
   return config;
+}
+
+std::string MapperOptions::objectsFile() const {
+  if (!objects_path.empty() || map_path.empty()) return objects_path;
+  return std::filesystem::path(map_path).replace_extension(".objects").string();
 }
 
 void MapperOptions::validate() const {
@@ -32,9 +38,10 @@ void addMapperOptions(CLI::App& app, MapperOptions& o) {
   app.add_option("--url", o.url, "LCM URL to listen on (udpm with ttl=0 stays on this host)")
       ->capture_default_str();
   app.add_option("--output-url", o.output_url, "LCM URL to publish on (default: --url)");
-  app.add_option("--map", o.map_path,
-                 "Map file: resumed at start when it exists; written on SAVE_MAP without a path and on "
-                 "SIGINT/SIGTERM ('' = none)")
+  app.add_option(
+         "--map", o.map_path,
+         "Map file: resumed at start when it exists; written on SAVE_MAP without a path and on "
+         "SIGINT/SIGTERM ('' = none)")
       ->capture_default_str();
   app.add_option("--voxel-size", o.map.voxel_size_m, "Voxel edge, metres")->capture_default_str();
   app.add_option("--max-depth", o.map.max_depth_m, "Ignore depth beyond, metres")
@@ -61,6 +68,12 @@ void addMapperOptions(CLI::App& app, MapperOptions& o) {
   app.add_option("--change-min-weight", o.change_min_weight,
                  "Change detection: frames that must see a voxel before it counts as observed")
       ->capture_default_str();
+  app.add_flag_callback(
+      "--no-objects", [&o] { o.object_database = false; },
+      "No object database (change events only)");
+  app.add_option("--objects", o.objects_path,
+                 "Object database file (default: beside --map, with .objects)");
+  app.add_option("--objects-channel", o.channels.objects)->capture_default_str();
   app.add_flag_callback(
       "--no-keyframe-scores", [&o] { o.keyframe_scores = false; },
       "Do not score frames as keyframes (no keyframe_score_t)");

@@ -22,6 +22,7 @@ struct MapperChannels {
   std::string esdf = lcm_io::kEsdfChannel;
   std::string stats = lcm_io::kStatsChannel;
   std::string change = lcm_io::kChangeChannel;
+  std::string objects = lcm_io::kObjectsChannel;
   std::string keyframe = lcm_io::kKeyframeChannel;
 };
 
@@ -53,6 +54,16 @@ struct MapperOptions {
   /// session once this many frames saw it (fewer: more of the session counts, noisier).
   float change_threshold_voxels = 2.5f;
   float change_min_weight = 3.0f;
+  /// With change detection: the objects each ended session found join the object database
+  /// (objects/object_database.h: matched to the models of earlier sessions, merged, or new
+  /// models); every model a session created or extended is published (object_update_t).
+  bool object_database = true;
+  /// The database file: loaded at start when it exists (a corrupt or newer one is refused and
+  /// left untouched), written atomically after every session end and on exit. "" with a map
+  /// path: beside the map (its name with ".objects"); "" without one: kept in memory only.
+  std::string objects_path;
+  /// objects_path, or the map path's sibling, or "".
+  std::string objectsFile() const;
   /// Score every frame against the map before fusing it (keyframe_score_t): a raycast of a
   /// sparse pixel grid, a few ms per frame.
   bool keyframe_scores = true;

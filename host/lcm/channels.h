@@ -13,6 +13,7 @@ inline constexpr const char* kMeshChannel = "STRATA_MESH_UPDATE";         // mes
 inline constexpr const char* kEsdfChannel = "STRATA_ESDF_SLICE";          // esdf_slice_t, out
 inline constexpr const char* kStatsChannel = "STRATA_MAP_STATS";          // map_stats_t, out
 inline constexpr const char* kChangeChannel = "STRATA_CHANGE_EVENT";      // change_event_t, out
+inline constexpr const char* kObjectsChannel = "STRATA_OBJECTS";         // object_update_t, out
 inline constexpr const char* kKeyframeChannel = "STRATA_KEYFRAME_SCORE";  // keyframe_score_t, out
 
 /// Multicast on the host only (ttl=0): nothing leaves the machine. A 4 MiB receive buffer holds
