@@ -114,6 +114,7 @@ TEST(DiffCommand, ComparesSimulatedSessionsAndWritesEveryOutput) {
 // run finds, within one (every instance and arrivals).
 TEST(ChangeDemo, DefaultRoomMeetsItsTargets) {
   apps::DemoOptions options;
+  options.objects = false;  // the object database step has its own test (test_objects_demo)
   options.out_dir = freshDir("strata_change_demo").string();
   options.quiet = true;
   options.incremental = true;
@@ -197,6 +198,7 @@ TEST(ChangeDemo, DefaultRoomMeetsItsTargets) {
 // and 8 of 8 (about 2.5 min on 2 cores).
 TEST(ChangeDemo, VioPosesKeepChangeDetection) {
   apps::DemoOptions options;
+  options.objects = false;  // the object database step has its own test (test_objects_demo)
   options.out_dir = freshDir("strata_change_demo_vio").string();
   options.quiet = true;
   options.sessions = 2;
@@ -248,6 +250,7 @@ TEST(ChangeDemo, VioPosesKeepChangeDetection) {
 // Before the view clamp (paths that flipped the view in doorways) precision was equal: 100 %.
 TEST(ChangeDemo, OfficeWithDenseKeyframesMeetsTheIncrementalTargets) {
   apps::DemoOptions options;
+  options.objects = false;  // the object database step has its own test (test_objects_demo)
   options.world = std::string(STRATA_WORLDS_DIR) + "/office.yaml";
   options.frames = 240;
   options.out_dir = freshDir("strata_change_demo_office").string();
