@@ -6,9 +6,11 @@
 #include <filesystem>
 
 #include "cli/diff_pipeline.h"
+#include "cli/objects_before_after.h"
 #include "cli/objects_outputs.h"
 #include "cli/objects_truth.h"
 #include "core/error.h"
+#include "io/image_io.h"
 
 namespace strata::apps {
 namespace {
@@ -94,6 +96,9 @@ void runChecked(const ObjectsOptions& o) {
                     "': " + eval::describeObjectDbEvaluation(e);
   }
   const ObjectsFiles files = writeObjectsFiles(run, result, o.out_dir, truth_json);
+  if (!o.before_after_png.empty()) {
+    writeColorPng(o.before_after_png, renderBeforeAfter(run, result, maps));
+  }
   const double total_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::printf(
@@ -123,6 +128,9 @@ CLI::App* addObjectsCommand(CLI::App& app, ObjectsOptions& o) {
                   "World file of the sessions' ground truth (default: the name it records)");
   cmd->add_option("--device", o.device, "Vulkan device index or name substring");
   cmd->add_flag("--quiet", o.quiet, "No progress bar");
+  cmd->add_option("--before-after", o.before_after_png,
+                  "Also write a PNG of the most merged models: largest single view above the "
+                  "merged model");
   return cmd;
 }
 
