@@ -101,6 +101,7 @@ Json stageTimes(const std::vector<Query>& queries, const std::vector<objects::Ob
 struct SizeResult {
   int models = 0;
   std::vector<double> ms, candidates, registrations;
+  std::vector<double> matched_ms;  // ms of the segments not skipped
   int segments = 0, skipped = 0, new_models = 0, matched_own = 0, matched_other = 0;
   int main_segments = 0, main_matched_own = 0;
 };
@@ -126,6 +127,7 @@ SizeResult runSize(int n, const std::vector<objects::ObjectModel>& models,
         ++r.skipped;
         continue;
       }
+      r.matched_ms.push_back(o.ms);
       r.candidates.push_back(o.candidates);
       r.registrations.push_back(o.registrations);
       const bool own = !o.new_model && o.model_id == q.shape + 1;
@@ -155,6 +157,9 @@ Json sizeJson(const SizeResult& r, int queries) {
                                  .set("mean", mean(r.ms)))
       .set("prefilter_candidates_mean", mean(r.candidates))
       .set("registrations_mean", mean(r.registrations))
+      // Registration dominates: what one candidate costs, converged or not.
+      .set("ms_per_candidate",
+           mean(r.candidates) > 0.0 ? mean(r.matched_ms) / mean(r.candidates) : 0.0)
       .set("new_models", r.new_models)
       .set("matched_own_model", r.matched_own)
       .set("matched_other_model", r.matched_other)
@@ -177,6 +182,7 @@ Json growthJson(const std::vector<SizeResult>& results) {
       .set("models_ratio", ratio(big.models, small->models))
       .set("median_ms_ratio", ratio(median(big.ms), median(small->ms)))
       .set("mean_ms_ratio", ratio(mean(big.ms), mean(small->ms)))
+      .set("candidates_ratio", ratio(mean(big.candidates), mean(small->candidates)))
       .set("registrations_ratio", ratio(mean(big.registrations), mean(small->registrations)));
 }
 
