@@ -44,6 +44,12 @@ std::vector<std::unique_ptr<Dataset>> openSessions(const ObjectsOptions& o) {
     throw InputError("objects needs at least two sessions (objects are found where they moved)");
   }
   if (o.out_dir.empty()) throw InputError("--out DIR is required");
+  if (!o.before_after_png.empty()) {
+    const fs::path folder = fs::path(o.before_after_png).parent_path();
+    if (!folder.empty() && !fs::is_directory(folder)) {
+      throw InputError("--before-after: folder '" + folder.string() + "' does not exist");
+    }
+  }
   if (o.frames < 0) throw InputError("--frames must be >= 0, not " + std::to_string(o.frames));
   std::vector<std::unique_ptr<Dataset>> sessions;
   for (const std::string& path : o.sessions) sessions.push_back(openDataset(path, {}));
