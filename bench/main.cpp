@@ -11,6 +11,7 @@
 #include "select_command.h"
 #include "occupancy_command.h"
 #include "align_command.h"
+#include "objects_command.h"
 #include "posegraph_command.h"
 #include "sim_command.h"
 #include "soak_command.h"
@@ -46,6 +47,8 @@ int main(int argc, char** argv) {
   CLI::App* align = strata::bench::addAlignCommand(app, align_options);
   strata::bench::PoseGraphBenchOptions posegraph_options;
   CLI::App* posegraph = strata::bench::addPoseGraphCommand(app, posegraph_options);
+  strata::bench::ObjectsBenchOptions objects_options;
+  CLI::App* objects = strata::bench::addObjectsCommand(app, objects_options);
   strata::bench::AllBenchOptions all_options;
   CLI::App* all = strata::bench::addAllCommand(app, all_options);
   try {
@@ -66,6 +69,7 @@ int main(int argc, char** argv) {
   if (frontend->parsed()) return strata::bench::runFrontendBench(frontend_options);
   if (posegraph->parsed()) return strata::bench::runPoseGraphBench(posegraph_options);
   if (align->parsed()) return strata::bench::runAlignBench(align_options);
+  if (objects->parsed()) return strata::bench::runObjectsBench(objects_options);
   if (all->parsed()) return strata::bench::runAllBench(all_options);
   return 2;
 }

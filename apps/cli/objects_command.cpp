@@ -6,9 +6,11 @@
 #include <filesystem>
 
 #include "cli/diff_pipeline.h"
+#include "cli/objects_before_after.h"
 #include "cli/objects_outputs.h"
 #include "cli/objects_truth.h"
 #include "core/error.h"
+#include "io/image_io.h"
 
 namespace strata::apps {
 namespace {
@@ -42,6 +44,12 @@ std::vector<std::unique_ptr<Dataset>> openSessions(const ObjectsOptions& o) {
     throw InputError("objects needs at least two sessions (objects are found where they moved)");
   }
   if (o.out_dir.empty()) throw InputError("--out DIR is required");
+  if (!o.before_after_png.empty()) {
+    const fs::path folder = fs::path(o.before_after_png).parent_path();
+    if (!folder.empty() && !fs::is_directory(folder)) {
+      throw InputError("--before-after: folder '" + folder.string() + "' does not exist");
+    }
+  }
   if (o.frames < 0) throw InputError("--frames must be >= 0, not " + std::to_string(o.frames));
   std::vector<std::unique_ptr<Dataset>> sessions;
   for (const std::string& path : o.sessions) sessions.push_back(openDataset(path, {}));
@@ -94,6 +102,9 @@ void runChecked(const ObjectsOptions& o) {
                     "': " + eval::describeObjectDbEvaluation(e);
   }
   const ObjectsFiles files = writeObjectsFiles(run, result, o.out_dir, truth_json);
+  if (!o.before_after_png.empty()) {
+    writeColorPng(o.before_after_png, renderBeforeAfter(run, result, maps));
+  }
   const double total_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::printf(
@@ -123,6 +134,9 @@ CLI::App* addObjectsCommand(CLI::App& app, ObjectsOptions& o) {
                   "World file of the sessions' ground truth (default: the name it records)");
   cmd->add_option("--device", o.device, "Vulkan device index or name substring");
   cmd->add_flag("--quiet", o.quiet, "No progress bar");
+  cmd->add_option("--before-after", o.before_after_png,
+                  "Also write a PNG of the most merged models: largest single view above the "
+                  "merged model");
   return cmd;
 }
 

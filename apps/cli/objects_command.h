@@ -27,6 +27,8 @@ struct ObjectsOptions {
   std::string world;
   std::string device;
   bool quiet = false;
+  /// Also write the before / after picture (objects_before_after.h) here ("" = none).
+  std::string before_after_png;
 };
 
 CLI::App* addObjectsCommand(CLI::App& app, ObjectsOptions& options);

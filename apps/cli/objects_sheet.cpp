@@ -41,22 +41,34 @@ void paste(ColorImage& sheet, const ColorImage& tile, int x0, int y0) {
 
 }  // namespace
 
-ColorImage renderModelView(const objects::ObjectModel& model, int size_px) {
-  if (model.mesh_M.vertices.empty()) return ColorImage(size_px, size_px, 60);
+ModelCamera modelCamera(const objects::ObjectModel& model, int size_px) {
   Eigen::AlignedBox3d box;
   for (const Eigen::Vector3f& v : model.mesh_M.vertices) box.extend(v.cast<double>());
+  if (box.isEmpty()) box.extend(Eigen::Vector3d::Zero());
   const double radius_m = std::max(0.05, 0.5 * box.diagonal().norm());
   const double half_fov = 0.5 * kFieldOfViewDeg * 3.14159265358979323846 / 180.0;
   const double distance_m = 1.1 * radius_m / std::sin(half_fov);
   const Eigen::Vector3d direction = Eigen::Vector3d(-0.6, -0.8, 0.7).normalized();
-  const Eigen::Isometry3d T_M_C = lookAt(box.center() + distance_m * direction, box.center());
-  CameraIntrinsics k;
+  ModelCamera camera;
+  camera.T_M_C = lookAt(box.center() + distance_m * direction, box.center());
+  CameraIntrinsics& k = camera.intrinsics;
   k.width_px = k.height_px = size_px;
   k.fx_px = k.fy_px = static_cast<float>(0.5 * size_px / std::tan(half_fov));
   k.cx_px = k.cy_px = 0.5f * static_cast<float>(size_px) - 0.5f;
+  return camera;
+}
+
+ColorImage renderTsdfView(const TsdfMap& tsdf, const CameraIntrinsics& intrinsics,
+                          const Eigen::Isometry3d& T_F_C) {
   RaycastOptions options;
   options.min_weight = 1e-3f;  // as the model's meshing
-  return shadedView(raycastReference(model.tsdf, k, T_M_C, options), T_M_C);
+  return shadedView(raycastReference(tsdf, intrinsics, T_F_C, options), T_F_C);
+}
+
+ColorImage renderModelView(const objects::ObjectModel& model, int size_px) {
+  if (model.mesh_M.vertices.empty()) return ColorImage(size_px, size_px, 60);
+  const ModelCamera camera = modelCamera(model, size_px);
+  return renderTsdfView(model.tsdf, camera.intrinsics, camera.T_M_C);
 }
 
 ColorImage renderModelSheet(const std::vector<objects::ObjectModel>& models, int size_px) {

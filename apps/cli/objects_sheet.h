@@ -1,12 +1,26 @@
 #pragma once
 // The contact sheet of an object database: one shaded rendering per model (its TSDF raycast from
 // above and aside, coloured by the model's colour), labelled with its id and instance count.
+#include <Eigen/Geometry>
 #include <vector>
 
 #include "core/types.h"
+#include "map/tsdf_map.h"
 #include "objects/object_model.h"
 
 namespace strata::apps {
+
+/// The camera of renderModelView in the model frame: front-left, 35 degrees above the horizon, at
+/// a distance that fits the bounding sphere of the model's mesh.
+struct ModelCamera {
+  CameraIntrinsics intrinsics;
+  Eigen::Isometry3d T_M_C = Eigen::Isometry3d::Identity();
+};
+ModelCamera modelCamera(const objects::ObjectModel& model, int size_px);
+
+/// Shaded raycast of `tsdf` (any frame F) seen by `intrinsics` at T_F_C.
+ColorImage renderTsdfView(const TsdfMap& tsdf, const CameraIntrinsics& intrinsics,
+                          const Eigen::Isometry3d& T_F_C);
 
 /// A view of one model's TSDF, `size_px` square, from a fixed direction (front-left, 35 degrees
 /// above the horizon) at a distance that fits its bounding sphere.
