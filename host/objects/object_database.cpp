@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <string>
 
 #include "core/error.h"
 
@@ -52,9 +53,39 @@ void appendPlaced(const Mesh& mesh, const Eigen::Isometry3d& T_W_M, Mesh& out) {
   }
 }
 
+/// Vertical span (m) of a cloud whose frame shares the world's vertical.
+float heightOf(const SurfaceCloud& cloud) {
+  if (cloud.empty()) return 0.0f;
+  float low = cloud.points.front().z(), high = low;
+  for (const Eigen::Vector3f& p : cloud.points) {
+    low = std::min(low, p.z());
+    high = std::max(high, p.z());
+  }
+  return high - low;
+}
+
+/// "" when the heights agree within the config's tolerance (or the check is off), else why not.
+std::string heightMismatch(float observation_m, float model_m, const DatabaseConfig& config) {
+  if (config.max_height_difference_ratio <= 0.0f) return "";
+  const float tolerance_m =
+      std::max(config.max_height_difference_voxels * config.registration.voxel_size_m,
+               config.max_height_difference_ratio * std::max(observation_m, model_m));
+  if (std::abs(observation_m - model_m) <= tolerance_m) return "";
+  return "height " + std::to_string(observation_m) + " m against the model's " +
+         std::to_string(model_m) + " m (tolerance " + std::to_string(tolerance_m) + " m)";
+}
+
 }  // namespace
 
 void DatabaseConfig::validate() const {
+  if (!(max_height_difference_ratio >= 0.0f && max_height_difference_ratio < 1.0f)) {
+    throw InputError("DatabaseConfig.max_height_difference_ratio must be in [0, 1), got " +
+                     std::to_string(max_height_difference_ratio));
+  }
+  if (!(max_height_difference_voxels >= 0.0f)) {
+    throw InputError("DatabaseConfig.max_height_difference_voxels must be >= 0, got " +
+                     std::to_string(max_height_difference_voxels));
+  }
   if (!(min_match_score >= 0.0f && min_match_score <= 1.0f)) {
     throw InputError("DatabaseConfig.min_match_score must be in [0, 1], got " +
                      std::to_string(min_match_score));
@@ -160,9 +191,16 @@ ObjectDatabase::Match ObjectDatabase::bestMatch(const ObjectObservation& observa
   const std::vector<int> candidates =
       prefilter_.candidates(observation.extent_m, observation.mean_color);
   outcome.candidates = static_cast<int>(candidates.size());
+  const float observation_height_m = heightOf(observation.surface_O);
   for (const int id : candidates) {
     const ObjectModel* model = findModel(id);
     if (model == nullptr || model->surface_M.empty()) continue;
+    const std::string mismatch =
+        heightMismatch(observation_height_m, heightOf(model->surface_M), config_);
+    if (!mismatch.empty()) {
+      appendRefusal(outcome.refused, id, mismatch);
+      continue;
+    }
     const RegistrationResult registration =
         registerSurfaces(observation.surface_O, model->surface_M, config_.registration);
     if (!registration.converged) {
