@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "core/error.h"
 
@@ -73,6 +74,29 @@ std::string heightMismatch(float observation_m, float model_m, const DatabaseCon
   if (std::abs(observation_m - model_m) <= tolerance_m) return "";
   return "height " + std::to_string(observation_m) + " m against the model's " +
          std::to_string(model_m) + " m (tolerance " + std::to_string(tolerance_m) + " m)";
+}
+
+/// Share of the model's surface samples within `inlier_m` of the observation's registered by
+/// T_M_O (the registration's fitness the other way round). Brute force: both clouds hold a few
+/// thousand samples and this runs once per consistent candidate.
+double modelCoverage(const SurfaceCloud& model_M, const SurfaceCloud& observation_O,
+                     const Eigen::Isometry3d& T_M_O, float inlier_m) {
+  if (model_M.empty() || observation_O.empty()) return 0.0;
+  const Eigen::Isometry3f T = T_M_O.cast<float>();
+  std::vector<Eigen::Vector3f> moved;
+  moved.reserve(observation_O.size());
+  for (const Eigen::Vector3f& p : observation_O.points) moved.push_back(T * p);
+  const float squared_m2 = inlier_m * inlier_m;
+  std::size_t covered = 0;
+  for (const Eigen::Vector3f& m : model_M.points) {
+    for (const Eigen::Vector3f& o : moved) {
+      if ((o - m).squaredNorm() <= squared_m2) {
+        ++covered;
+        break;
+      }
+    }
+  }
+  return static_cast<double>(covered) / static_cast<double>(model_M.size());
 }
 
 }  // namespace
@@ -214,13 +238,20 @@ ObjectDatabase::Match ObjectDatabase::bestMatch(const ObjectObservation& observa
       appendRefusal(outcome.refused, id, consistency.reason);
       continue;
     }
-    const double score = registration.fitness * consistency.agreement;
+    const double fitness =
+        config_.score_both_ways
+            ? std::max(registration.fitness,
+                       modelCoverage(model->surface_M, observation.surface_O,
+                                     registration.T_target_source,
+                                     config_.registration.inlier_distance_voxels *
+                                         config_.registration.voxel_size_m))
+            : registration.fitness;
+    const double score = fitness * consistency.agreement;
     if (score < config_.min_match_score) {
       appendRefusal(outcome.refused, id,
-                    "score " + std::to_string(score) + " (fitness " +
-                        std::to_string(registration.fitness) + " x agreement " +
-                        std::to_string(consistency.agreement) + ") < min_match_score " +
-                        std::to_string(config_.min_match_score));
+                    "score " + std::to_string(score) + " (fitness " + std::to_string(fitness) +
+                        " x agreement " + std::to_string(consistency.agreement) +
+                        ") < min_match_score " + std::to_string(config_.min_match_score));
       continue;
     }
     accepted.emplace_back(id, score);

@@ -36,13 +36,17 @@ struct DatabaseConfig {
   /// consistency check let through (a box accepting an L seen from behind scores 0.37) than a new
   /// side of the same one (0.77 for that L's own model). 0 disables.
   float min_match_score = 0.5f;
+  /// The score's fitness is the larger of the registration's (share of the observation on the
+  /// model) and the same share of the model's surface on the observation: a partial model (one
+  /// side of a crate) and a fuller later view of it score low one way only. false: one way.
+  bool score_both_ways = true;
   /// Objects stand on the floor and their tops are seen, so partial views of one object span
   /// its whole height, while boxes of one footprint but different heights pass the consistency
   /// check (its NOTE). A model whose vertical span differs from the observation's by more than
   /// max(max_height_difference_voxels voxels, max_height_difference_ratio x the taller) is not
   /// registered. NOTE: a segment that is only part of an object (a chair's seat) is refused by
   /// it too, as the size prefilter mostly does already. Ratio 0 disables.
-  float max_height_difference_ratio = 0.08f;
+  float max_height_difference_ratio = 0.15f;
   float max_height_difference_voxels = 2.5f;
   /// Merge an accepted observation into the model (false: only record the instance).
   bool merge = true;
