@@ -1,12 +1,13 @@
-// Registration of two surface clouds: FPFH correspondences -> RANSAC over them (upright
-// hypotheses only) -> the best hypotheses scored on the whole clouds -> point-to-plane ICP.
+// Registration of two surface clouds: FPFH correspondences (feature_neighbours per source point)
+// -> RANSAC over them (yaw + translation from 2 pairs, or upright 6-DoF hypotheses) -> the best
+// hypotheses scored on the whole clouds -> point-to-plane ICP (6 DoF; a tilted result refused).
 //
-// NOTE: the RANSAC loop is ours rather than pcl::SampleConsensusPrerejective because (1) each
-// hypothesis is refused as soon as it tilts the object more than max_tilt_deg (objects stand on
-// the floor), which Prerejective cannot be told; (2) it draws from its own std::mt19937 seeded
-// with config.seed, where Prerejective calls the process-wide rand() (shared state between
-// threads); (3) it keeps several distinct hypotheses, so a symmetric part that wins the
-// correspondence vote does not hide the right pose from the whole-cloud check.
+// NOTE: the RANSAC loop is ours rather than pcl::SampleConsensusPrerejective because (1) it
+// searches 4 DoF (objects stand on the floor: 2-point samples, far fewer draws than 3-point 6-DoF
+// samples nearly all of which tilt), which Prerejective cannot be told; (2) it draws from its own
+// std::mt19937 seeded with config.seed, where Prerejective calls the process-wide rand() (shared
+// state between threads); (3) it keeps several distinct hypotheses, so a symmetric part that wins
+// the correspondence vote does not hide the right pose from the whole-cloud check.
 #include "objects/object_registration.h"
 
 #include <pcl/common/transforms.h>
