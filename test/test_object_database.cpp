@@ -163,12 +163,46 @@ TEST(ObjectDatabase, MatchesBelowTheMinimumScoreFoundNewModels) {
   }
 }
 
+// Two boxes of one footprint, 0.4 and 0.3 m tall: the consistency check cannot tell them apart
+// from a partial model (its NOTE), the height check does; the same box seen again still joins.
+TEST(ObjectDatabase, BoxesOfDifferentHeightsFoundTwoModels) {
+  const test::Thing tall = kBox;
+  const test::Thing tall_again{kBox.sdf_P, {0.6, 0.7}, 100.0};
+  const test::Thing low{[](const Eigen::Vector3d& p) {
+                          return test::boxSdf(
+                              p, Eigen::AlignedBox3d(Eigen::Vector3d(-0.22, -0.15, -0.1),
+                                                     Eigen::Vector3d(0.22, 0.15, 0.3)));
+                        },
+                        {0.6, 0.7},
+                        100.0};
+  for (const bool same : {false, true}) {
+    const Session first = makeSession({tall}, 1);
+    const Session second = makeSession({same ? tall_again : low}, 2);
+    ObjectDatabase database;
+    database.addSession(1, first.map, first.surface, first.segments);
+    const std::vector<SegmentOutcome> outcomes =
+        database.addSession(2, second.map, second.surface, second.segments);
+    ASSERT_EQ(outcomes.size(), 1u);
+    std::printf("%s box: model %d, refused: %s\n", same ? "same" : "lower", outcomes[0].model_id,
+                outcomes[0].refused.c_str());
+    if (same) {
+      EXPECT_EQ(database.models().size(), 1u) << outcomes[0].refused;
+    } else {
+      EXPECT_EQ(database.models().size(), 2u);
+      EXPECT_NE(outcomes[0].refused.find("height"), std::string::npos) << outcomes[0].refused;
+    }
+  }
+}
+
 TEST(ObjectDatabase, ConfigIsValidated) {
   DatabaseConfig config;
   config.registration.ransac_iterations = 0;
   EXPECT_THROW(ObjectDatabase{config}, InputError);
   config = DatabaseConfig{};
   config.min_match_score = 1.5f;
+  EXPECT_THROW(ObjectDatabase{config}, InputError);
+  config = DatabaseConfig{};
+  config.max_height_difference_ratio = -0.1f;
   EXPECT_THROW(ObjectDatabase{config}, InputError);
 }
 

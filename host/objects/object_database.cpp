@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "core/error.h"
 
@@ -52,9 +54,62 @@ void appendPlaced(const Mesh& mesh, const Eigen::Isometry3d& T_W_M, Mesh& out) {
   }
 }
 
+/// Vertical span (m) of a cloud whose frame shares the world's vertical.
+float heightOf(const SurfaceCloud& cloud) {
+  if (cloud.empty()) return 0.0f;
+  float low = cloud.points.front().z(), high = low;
+  for (const Eigen::Vector3f& p : cloud.points) {
+    low = std::min(low, p.z());
+    high = std::max(high, p.z());
+  }
+  return high - low;
+}
+
+/// "" when the heights agree within the config's tolerance (or the check is off), else why not.
+std::string heightMismatch(float observation_m, float model_m, const DatabaseConfig& config) {
+  if (config.max_height_difference_ratio <= 0.0f) return "";
+  const float tolerance_m =
+      std::max(config.max_height_difference_voxels * config.registration.voxel_size_m,
+               config.max_height_difference_ratio * std::max(observation_m, model_m));
+  if (std::abs(observation_m - model_m) <= tolerance_m) return "";
+  return "height " + std::to_string(observation_m) + " m against the model's " +
+         std::to_string(model_m) + " m (tolerance " + std::to_string(tolerance_m) + " m)";
+}
+
+/// Share of the model's surface samples within `inlier_m` of the observation's registered by
+/// T_M_O (the registration's fitness the other way round). Brute force: both clouds hold a few
+/// thousand samples and this runs once per consistent candidate.
+double modelCoverage(const SurfaceCloud& model_M, const SurfaceCloud& observation_O,
+                     const Eigen::Isometry3d& T_M_O, float inlier_m) {
+  if (model_M.empty() || observation_O.empty()) return 0.0;
+  const Eigen::Isometry3f T = T_M_O.cast<float>();
+  std::vector<Eigen::Vector3f> moved;
+  moved.reserve(observation_O.size());
+  for (const Eigen::Vector3f& p : observation_O.points) moved.push_back(T * p);
+  const float squared_m2 = inlier_m * inlier_m;
+  std::size_t covered = 0;
+  for (const Eigen::Vector3f& m : model_M.points) {
+    for (const Eigen::Vector3f& o : moved) {
+      if ((o - m).squaredNorm() <= squared_m2) {
+        ++covered;
+        break;
+      }
+    }
+  }
+  return static_cast<double>(covered) / static_cast<double>(model_M.size());
+}
+
 }  // namespace
 
 void DatabaseConfig::validate() const {
+  if (!(max_height_difference_ratio >= 0.0f && max_height_difference_ratio < 1.0f)) {
+    throw InputError("DatabaseConfig.max_height_difference_ratio must be in [0, 1), got " +
+                     std::to_string(max_height_difference_ratio));
+  }
+  if (!(max_height_difference_voxels >= 0.0f)) {
+    throw InputError("DatabaseConfig.max_height_difference_voxels must be >= 0, got " +
+                     std::to_string(max_height_difference_voxels));
+  }
   if (!(min_match_score >= 0.0f && min_match_score <= 1.0f)) {
     throw InputError("DatabaseConfig.min_match_score must be in [0, 1], got " +
                      std::to_string(min_match_score));
@@ -160,9 +215,16 @@ ObjectDatabase::Match ObjectDatabase::bestMatch(const ObjectObservation& observa
   const std::vector<int> candidates =
       prefilter_.candidates(observation.extent_m, observation.mean_color);
   outcome.candidates = static_cast<int>(candidates.size());
+  const float observation_height_m = heightOf(observation.surface_O);
   for (const int id : candidates) {
     const ObjectModel* model = findModel(id);
     if (model == nullptr || model->surface_M.empty()) continue;
+    const std::string mismatch =
+        heightMismatch(observation_height_m, heightOf(model->surface_M), config_);
+    if (!mismatch.empty()) {
+      appendRefusal(outcome.refused, id, mismatch);
+      continue;
+    }
     const RegistrationResult registration =
         registerSurfaces(observation.surface_O, model->surface_M, config_.registration);
     if (!registration.converged) {
@@ -176,13 +238,20 @@ ObjectDatabase::Match ObjectDatabase::bestMatch(const ObjectObservation& observa
       appendRefusal(outcome.refused, id, consistency.reason);
       continue;
     }
-    const double score = registration.fitness * consistency.agreement;
+    const double fitness =
+        config_.score_both_ways
+            ? std::max(registration.fitness,
+                       modelCoverage(model->surface_M, observation.surface_O,
+                                     registration.T_target_source,
+                                     config_.registration.inlier_distance_voxels *
+                                         config_.registration.voxel_size_m))
+            : registration.fitness;
+    const double score = fitness * consistency.agreement;
     if (score < config_.min_match_score) {
       appendRefusal(outcome.refused, id,
-                    "score " + std::to_string(score) + " (fitness " +
-                        std::to_string(registration.fitness) + " x agreement " +
-                        std::to_string(consistency.agreement) + ") < min_match_score " +
-                        std::to_string(config_.min_match_score));
+                    "score " + std::to_string(score) + " (fitness " + std::to_string(fitness) +
+                        " x agreement " + std::to_string(consistency.agreement) +
+                        ") < min_match_score " + std::to_string(config_.min_match_score));
       continue;
     }
     accepted.emplace_back(id, score);

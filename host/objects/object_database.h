@@ -3,7 +3,8 @@
 // that moved, kept as TSDF models that grow more complete with every session they are seen in.
 //
 // addSession(), per discovered segment of the session, largest first:
-//   observeObject -> prefilter candidates (size, colour) -> registerSurfaces against each
+//   observeObject -> prefilter candidates (size, colour; heights, DatabaseConfig) ->
+//   registerSurfaces against each
 //   candidate -> checkConsistency of the registered pose -> the candidate with the best score
 //   (fitness x agreement) among those accepted takes the observation: merged into its TSDF
 //   (weighted SDF average) and an instance added; none accepted: a new model. Degenerate segments
@@ -35,6 +36,20 @@ struct DatabaseConfig {
   /// consistency check let through (a box accepting an L seen from behind scores 0.37) than a new
   /// side of the same one (0.77 for that L's own model). 0 disables.
   float min_match_score = 0.5f;
+  /// The score's fitness is the larger of the registration's (share of the observation on the
+  /// model) and the same share of the model's surface on the observation: a partial model (one
+  /// side of a crate) and a fuller later view of it score low one way only. false: one way.
+  bool score_both_ways = true;
+  /// Objects stand on the floor and their tops are seen, so partial views of one object span
+  /// its whole height, while boxes of one footprint but different heights pass the consistency
+  /// check (its NOTE). A model whose vertical span differs from the observation's by more than
+  /// max(max_height_difference_voxels voxels, max_height_difference_ratio x the taller) is not
+  /// registered. NOTE: a segment that is only part of an object (a chair's seat) is refused by
+  /// it too, as the size prefilter mostly does already. Ratio 0 disables. NOTE: 8 % keeps the
+  /// warehouse's crates 0.5 and 0.6 m tall apart; 15 % let one crate and a partly seen stack into
+  /// other boxes' models (docs/objects_evaluation.md).
+  float max_height_difference_ratio = 0.08f;
+  float max_height_difference_voxels = 2.5f;
   /// Merge an accepted observation into the model (false: only record the instance).
   bool merge = true;
   void validate() const;  // InputError naming the bad field

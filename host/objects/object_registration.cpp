@@ -1,12 +1,13 @@
-// Registration of two surface clouds: FPFH correspondences -> RANSAC over them (upright
-// hypotheses only) -> the best hypotheses scored on the whole clouds -> point-to-plane ICP.
+// Registration of two surface clouds: FPFH correspondences (feature_neighbours per source point)
+// -> RANSAC over them (yaw + translation from 2 pairs, or upright 6-DoF hypotheses) -> the best
+// hypotheses scored on the whole clouds -> point-to-plane ICP (6 DoF; a tilted result refused).
 //
-// NOTE: the RANSAC loop is ours rather than pcl::SampleConsensusPrerejective because (1) each
-// hypothesis is refused as soon as it tilts the object more than max_tilt_deg (objects stand on
-// the floor), which Prerejective cannot be told; (2) it draws from its own std::mt19937 seeded
-// with config.seed, where Prerejective calls the process-wide rand() (shared state between
-// threads); (3) it keeps several distinct hypotheses, so a symmetric part that wins the
-// correspondence vote does not hide the right pose from the whole-cloud check.
+// NOTE: the RANSAC loop is ours rather than pcl::SampleConsensusPrerejective because (1) it
+// searches 4 DoF (objects stand on the floor: 2-point samples, far fewer draws than 3-point 6-DoF
+// samples nearly all of which tilt), which Prerejective cannot be told; (2) it draws from its own
+// std::mt19937 seeded with config.seed, where Prerejective calls the process-wide rand() (shared
+// state between threads); (3) it keeps several distinct hypotheses, so a symmetric part that wins
+// the correspondence vote does not hide the right pose from the whole-cloud check.
 #include "objects/object_registration.h"
 
 #include <pcl/common/transforms.h>
@@ -94,9 +95,10 @@ bool finiteFeature(const pcl::FPFHSignature33& f) {
                      [](float v) { return std::isfinite(v); });
 }
 
-/// Each source point with a finite descriptor paired with the target point of the nearest one.
-std::vector<Correspondence> matchFeatures(const Features::Ptr& source,
-                                          const Features::Ptr& target) {
+/// Each source point with a finite descriptor paired with the target points of the `neighbours`
+/// nearest ones.
+std::vector<Correspondence> matchFeatures(const Features::Ptr& source, const Features::Ptr& target,
+                                          int neighbours) {
   Features::Ptr finite_target(new Features);
   std::vector<int> target_index;
   for (std::size_t i = 0; i < target->size(); ++i) {
@@ -108,12 +110,14 @@ std::vector<Correspondence> matchFeatures(const Features::Ptr& source,
   if (finite_target->empty()) return out;
   pcl::KdTreeFLANN<pcl::FPFHSignature33> tree;
   tree.setInputCloud(finite_target);
-  std::vector<int> nearest(1);
-  std::vector<float> distance(1);
+  std::vector<int> nearest(static_cast<std::size_t>(neighbours));
+  std::vector<float> distance(static_cast<std::size_t>(neighbours));
   for (std::size_t i = 0; i < source->size(); ++i) {
     if (!finiteFeature((*source)[i])) continue;
-    if (tree.nearestKSearch((*source)[i], 1, nearest, distance) == 1) {
-      out.push_back({static_cast<int>(i), target_index[static_cast<std::size_t>(nearest[0])]});
+    const int found = tree.nearestKSearch((*source)[i], neighbours, nearest, distance);
+    for (int k = 0; k < found; ++k) {
+      out.push_back({static_cast<int>(i),
+                     target_index[static_cast<std::size_t>(nearest[static_cast<std::size_t>(k)])]});
     }
   }
   return out;
@@ -287,6 +291,8 @@ void RegistrationConfig::validate() const {
   require(icp_coarse_distance_voxels >= icp_max_distance_voxels, "icp_coarse_distance_voxels",
           "must be >= icp_max_distance_voxels");
   require(max_tilt_deg > 0.0f && max_tilt_deg <= 180.0f, "max_tilt_deg", "must be in (0, 180]");
+  require(feature_neighbours >= 1 && feature_neighbours <= 8, "feature_neighbours",
+          "must be in 1..8");
 }
 
 RegistrationResult registerSurfaces(const SurfaceCloud& source, const SurfaceCloud& target,
@@ -308,13 +314,18 @@ RegistrationResult registerSurfaces(const SurfaceCloud& source, const SurfaceClo
     const Cloud::Ptr target_pcl = toPcl(target);
     const float radius_m = config.feature_radius_voxels * config.voxel_size_m;
     const std::vector<Correspondence> matches =
-        matchFeatures(computeFpfh(source_pcl, radius_m), computeFpfh(target_pcl, radius_m));
+        matchFeatures(computeFpfh(source_pcl, radius_m), computeFpfh(target_pcl, radius_m),
+                      config.feature_neighbours);
     result.correspondences = static_cast<int>(matches.size());
     const std::vector<Hypothesis> hypotheses =
-        ransacUpright(source.points, target.points, matches, config, kHypothesesScored);
+        config.four_dof
+            ? ransacYaw(source.points, target.points, matches, config, kHypothesesScored)
+            : ransacUpright(source.points, target.points, matches, config, kHypothesesScored);
     if (hypotheses.empty()) {
-      return finish("no RANSAC hypothesis within " + degrees(config.max_tilt_deg) +
-                    " of upright from " + std::to_string(matches.size()) +
+      const std::string kind = config.four_dof
+                                   ? "upright (yaw + translation)"
+                                   : "within " + degrees(config.max_tilt_deg) + " of upright";
+      return finish("no RANSAC hypothesis " + kind + " from " + std::to_string(matches.size()) +
                     " feature correspondences");
     }
     const std::optional<Refined> best = refineBest(source_pcl, target_pcl, hypotheses, config);

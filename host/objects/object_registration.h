@@ -1,6 +1,7 @@
 #pragma once
 // Registration of an observation's surface onto a model's: global (FPFH descriptors of every
-// sample, nearest-descriptor correspondences, RANSAC over them refusing tilted hypotheses) then
+// sample, each paired with its feature_neighbours nearest descriptors, RANSAC over them: yaw +
+// translation from 2 pairs (four_dof) or 6 DoF refusing tilted hypotheses) then
 // local (point-to-plane ICP, coarse then fine). Deterministic for a seed.
 // Built on PCL (Debian libpcl-dev); docs/objects.md says why PCL and which of its classes.
 // Everything PCL stays in the .cpp files: callers see Eigen and SurfaceCloud only.
@@ -29,6 +30,13 @@ struct RegistrationConfig {
   /// Rotations about the world's vertical only (objects stand on the floor): RANSAC hypotheses
   /// that tilt the object by more than this are refused. 180 disables.
   float max_tilt_deg = 10.0f;
+  /// Hypotheses in 4 DoF (yaw about the vertical + translation) from 2 correspondences, for
+  /// objects that stand upright (object frames share the world's vertical). false: 6-DoF samples
+  /// of ransac_samples correspondences, tilted ones refused.
+  bool four_dof = true;
+  /// Each source descriptor is paired with this many nearest target descriptors: on partial
+  /// views the right target point is often only second or third nearest (1..8).
+  int feature_neighbours = 3;
   std::uint32_t seed = 1;  // RANSAC is deterministic for a given seed
   void validate() const;   // InputError naming the bad field
 };
