@@ -13,6 +13,7 @@
 #include "lcm/convert_stereo.h"
 #include "map/map_file.h"
 #include "mesh/ply.h"
+#include "objects/object_database_file.h"
 #include "strata/command_t.hpp"
 
 namespace strata {
@@ -60,6 +61,32 @@ void writeMapSeeds(const fs::path& out) {
   writeBytes(out / "fuzz_map_file/seed_one_block.strata", bytes.data(), bytes.size());
   const std::vector<std::uint8_t> empty = serializeMap(TsdfMap(MapConfig{}));
   writeBytes(out / "fuzz_map_file/seed_empty.strata", empty.data(), empty.size());
+}
+
+/// An empty database, and one with a model of one block and two instances.
+void writeObjectDatabaseSeeds(const fs::path& out) {
+  fs::create_directories(out / "fuzz_object_database");
+  const std::string empty = objects::serializeObjectDatabase(objects::ObjectDatabase{});
+  writeBytes(out / "fuzz_object_database/seed_empty.objects", empty.data(), empty.size());
+  objects::ObjectModel model;
+  model.id = 1;
+  model.merged_observations = 2;
+  TsdfBlock& block = model.tsdf.allocateBlock(BlockIndex(0, -1, 0));
+  for (std::size_t i = 0; i < block.size(); ++i) {
+    block[i] = {0.02f * static_cast<float>(i % 9) - 0.08f, 2.0f, 0x506070u};
+  }
+  for (int session = 0; session < 2; ++session) {
+    objects::ObjectInstance instance;
+    instance.session = session;
+    instance.segment_id = 1;
+    instance.T_W_M.translation() = Eigen::Vector3d(1.0 + session, 2.0, 0.0);
+    instance.merged = true;
+    model.instances.push_back(instance);
+  }
+  const objects::ObjectDatabase database =
+      objects::ObjectDatabase::fromParts(objects::DatabaseConfig{}, {std::move(model)}, {0, 1});
+  const std::string bytes = objects::serializeObjectDatabase(database);
+  writeBytes(out / "fuzz_object_database/seed_one_model.objects", bytes.data(), bytes.size());
 }
 
 void writeMeshSeeds(const fs::path& out) {
@@ -182,11 +209,12 @@ void writeEurocSeeds(const fs::path& out) {
             "9.0874956666666655,0.13075533333333333,-3.6938381666666662\n"
             "1403715273267142912,-0.0013962634015954637,0.019547687622336492,0.0781907504893,"
             "9.0793234583333327,0.122583125,-3.6938381666666662\n");
-  writeText(out / "fuzz_euroc_csv/seed_groundtruth.csv",
-            "#timestamp, p_RS_R_x [m], p_RS_R_y [m], p_RS_R_z [m], q_RS_w [], q_RS_x [], q_RS_y [], "
-            "q_RS_z [], v_RS_R_x, v_RS_R_y, v_RS_R_z, b_w_x, b_w_y, b_w_z, b_a_x, b_a_y, b_a_z\n"
-            "1403715273262142976,0.878895,2.1834,0.948427,0.069433,-0.824237,-0.106942,-0.551702,"
-            "0.001,-0.002,0.0,-0.002,0.02,0.076,-0.01,0.1,0.08\n");
+  writeText(
+      out / "fuzz_euroc_csv/seed_groundtruth.csv",
+      "#timestamp, p_RS_R_x [m], p_RS_R_y [m], p_RS_R_z [m], q_RS_w [], q_RS_x [], q_RS_y [], "
+      "q_RS_z [], v_RS_R_x, v_RS_R_y, v_RS_R_z, b_w_x, b_w_y, b_w_z, b_a_x, b_a_y, b_a_z\n"
+      "1403715273262142976,0.878895,2.1834,0.948427,0.069433,-0.824237,-0.106942,-0.551702,"
+      "0.001,-0.002,0.0,-0.002,0.02,0.076,-0.01,0.1,0.08\n");
   GreyImage left(4, 3, 90), right(4, 3, 80);
   left.pixels[5] = 200;
   writeMessage(out / "fuzz_lcm_stereo_image/seed_stereo.lcm",
@@ -207,6 +235,7 @@ int main(int argc, char** argv) {
   }
   const std::filesystem::path out(argv[1]);
   strata::writeMapSeeds(out);
+  strata::writeObjectDatabaseSeeds(out);
   strata::writeMeshSeeds(out);
   strata::writeImageSeeds(out);
   strata::writeLcmSeeds(out);

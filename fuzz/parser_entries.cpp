@@ -16,6 +16,7 @@
 #include "lcm/convert_stereo.h"
 #include "map/map_file.h"
 #include "mesh/ply.h"
+#include "objects/object_database_file.h"
 #include "sim/world/mesh_file.h"
 #include "sim/world/world_parser.h"
 #include "strata/command_t.hpp"
@@ -40,6 +41,27 @@ void mapFile(const std::uint8_t* data, std::size_t size) {
     std::memcpy(file.data() + file.size() - 4, &crc, 4);
   }
   deserializeMap(file, "fuzz.strata");
+}
+
+/// Object database files (objects/object_database_file.h). NOTE: the header's payload size and
+/// FNV-1a checksum are rewritten to fit the input, so inputs reach the payload's parsing (sessions,
+/// instances, each model's map-file TSDF) instead of nearly all stopping at the header.
+void objectDatabase(const std::uint8_t* data, std::size_t size) {
+  constexpr std::size_t kSizeAt = 9 + 4;  // magic "STRATAOBJ", u32 version
+  constexpr std::size_t kChecksumAt = kSizeAt + 4;
+  constexpr std::size_t kHeaderBytes = kChecksumAt + 8;
+  std::string file = text(data, size);
+  if (file.size() >= kHeaderBytes) {
+    const auto payload = static_cast<std::uint32_t>(file.size() - kHeaderBytes);
+    std::uint64_t hash = 14695981039346656037ull;  // FNV-1a, 64 bit
+    for (std::size_t i = kHeaderBytes; i < file.size(); ++i) {
+      hash ^= static_cast<std::uint8_t>(file[i]);
+      hash *= 1099511628211ull;
+    }
+    std::memcpy(&file[kSizeAt], &payload, sizeof(payload));
+    std::memcpy(&file[kChecksumAt], &hash, sizeof(hash));
+  }
+  objects::deserializeObjectDatabase(file, "fuzz.objects");
 }
 
 void tumFileList(const std::uint8_t* data, std::size_t size) {
@@ -176,6 +198,7 @@ const std::pair<const char*, Entry> kEntries[] = {
     {"fuzz_euroc_csv", eurocCsv},
     {"fuzz_lcm_stereo_image", lcmStereoImage},
     {"fuzz_lcm_imu", lcmImu},
+    {"fuzz_object_database", objectDatabase},
 };
 
 }  // namespace

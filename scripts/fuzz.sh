@@ -21,7 +21,7 @@ RUN="$BUILD/fuzz/run"
 # rather than growing inputs the parsers read linearly.
 max_len() {
   case "$1" in
-    fuzz_map_file) echo 16384 ;;
+    fuzz_map_file | fuzz_object_database) echo 16384 ;;
     fuzz_depth_png | fuzz_color_image) echo 8192 ;;
     fuzz_lcm_rgbd_frame) echo 4096 ;;
     fuzz_world_yaml | fuzz_ply_mesh | fuzz_obj_mesh) echo 4096 ;;

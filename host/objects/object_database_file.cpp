@@ -1,5 +1,6 @@
 #include "objects/object_database_file.h"
 
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <limits>
@@ -214,7 +215,11 @@ ObjectDatabase deserializeObjectDatabase(const std::string& bytes, const std::st
   DatabaseConfig loaded = config;
   loaded.registration.voxel_size_m = r.get<float>("map voxel size");
   loaded.model.voxel_size_m = r.get<float>("model voxel size");
-  if (!(loaded.registration.voxel_size_m > 0.0f) || !(loaded.model.voxel_size_m >= 0.0f)) {
+  // A voxel edge outside [0.1 mm, 10 m] (or not finite) is corruption, not a map: sample cells
+  // of such a size overflow integer coordinates.
+  const auto plausible = [](float v) { return std::isfinite(v) && v >= 1e-4f && v <= 10.0f; };
+  if (!plausible(loaded.registration.voxel_size_m) ||
+      !(loaded.model.voxel_size_m == 0.0f || plausible(loaded.model.voxel_size_m))) {
     r.fail("voxel sizes " + std::to_string(loaded.registration.voxel_size_m) + " / " +
            std::to_string(loaded.model.voxel_size_m) + " m");
   }
