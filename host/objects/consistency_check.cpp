@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "objects/internal/block_sets.h"
 
 namespace strata::objects {
 namespace {
@@ -30,7 +31,7 @@ Agreement sdfAgreement(const TsdfMap& from, const TsdfMap& to, const Eigen::Isom
       if (voxel.weight < config.min_weight || voxel.weight <= 0.0f) continue;
       if (std::abs(voxel.tsdf_m) >= band_m) continue;
       ++out.surface;
-      const GlobalVoxelIndex v = b * kBlockEdge + Eigen::Vector3i(i % 8, i / 8 % 8, i / 64);
+      const GlobalVoxelIndex v = voxelOfBlock(b, i);
       const Eigen::Vector3d p_to = T_to_from * voxelCenter(v, from_voxel_m).cast<double>();
       const auto sample = sampleTsdf(to, p_to.cast<float>(), config.min_weight);
       if (!sample) continue;
@@ -56,10 +57,8 @@ void freeSpace(const ObjectModel& model, const Eigen::Isometry3d& T_W_M, const T
     ++result.model_samples_observed;
     if (sample->distance_m > free_m) ++result.model_samples_in_free_space;
   }
-  result.free_space_violation = result.model_samples_observed == 0
-                                    ? 0.0
-                                    : static_cast<double>(result.model_samples_in_free_space) /
-                                          static_cast<double>(result.model_samples_observed);
+  result.free_space_violation =
+      share(result.model_samples_in_free_space, result.model_samples_observed);
 }
 
 void requireUnit(float v, const char* field) {

@@ -76,29 +76,6 @@ std::string heightMismatch(float observation_m, float model_m, const DatabaseCon
          std::to_string(model_m) + " m (tolerance " + std::to_string(tolerance_m) + " m)";
 }
 
-/// Share of the model's surface samples within `inlier_m` of the observation's registered by
-/// T_M_O (the registration's fitness the other way round). Brute force: both clouds hold a few
-/// thousand samples and this runs once per consistent candidate.
-double modelCoverage(const SurfaceCloud& model_M, const SurfaceCloud& observation_O,
-                     const Eigen::Isometry3d& T_M_O, float inlier_m) {
-  if (model_M.empty() || observation_O.empty()) return 0.0;
-  const Eigen::Isometry3f T = T_M_O.cast<float>();
-  std::vector<Eigen::Vector3f> moved;
-  moved.reserve(observation_O.size());
-  for (const Eigen::Vector3f& p : observation_O.points) moved.push_back(T * p);
-  const float squared_m2 = inlier_m * inlier_m;
-  std::size_t covered = 0;
-  for (const Eigen::Vector3f& m : model_M.points) {
-    for (const Eigen::Vector3f& o : moved) {
-      if ((o - m).squaredNorm() <= squared_m2) {
-        ++covered;
-        break;
-      }
-    }
-  }
-  return static_cast<double>(covered) / static_cast<double>(model_M.size());
-}
-
 }  // namespace
 
 void DatabaseConfig::validate() const {
@@ -238,14 +215,9 @@ ObjectDatabase::Match ObjectDatabase::bestMatch(const ObjectObservation& observa
       appendRefusal(outcome.refused, id, consistency.reason);
       continue;
     }
-    const double fitness =
-        config_.score_both_ways
-            ? std::max(registration.fitness,
-                       modelCoverage(model->surface_M, observation.surface_O,
-                                     registration.T_target_source,
-                                     config_.registration.inlier_distance_voxels *
-                                         config_.registration.voxel_size_m))
-            : registration.fitness;
+    const double fitness = config_.score_both_ways
+                               ? std::max(registration.fitness, registration.target_coverage)
+                               : registration.fitness;
     const double score = fitness * consistency.agreement;
     if (score < config_.min_match_score) {
       appendRefusal(outcome.refused, id,

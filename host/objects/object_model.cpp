@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "mesh/extract_mesh.h"
 #include "objects/cloud_stats.h"
+#include "objects/internal/block_sets.h"
 
 namespace strata::objects {
 namespace {
@@ -50,7 +51,7 @@ void requireFinite(const Eigen::Isometry3d& T, const char* what) {
 /// once mapped into M.
 std::vector<BlockIndex> coveredBlocks(const TsdfMap& model, const TsdfMap& observation,
                                       const Eigen::Isometry3d& T_M_O) {
-  std::unordered_set<BlockIndex, BlockIndexHash> blocks;
+  BlockSet blocks;
   for (const auto& entry : model.blocks()) blocks.insert(entry.first);
   const double obs_block_m = observation.config().blockSize();
   const double model_block_m = model.config().blockSize();
@@ -64,17 +65,9 @@ std::vector<BlockIndex> coveredBlocks(const TsdfMap& model, const TsdfMap& obser
     }
     const Eigen::Vector3i lo = (box.min() / model_block_m).array().floor().cast<int>();
     const Eigen::Vector3i hi = (box.max() / model_block_m).array().floor().cast<int>();
-    for (int z = lo.z(); z <= hi.z(); ++z) {
-      for (int y = lo.y(); y <= hi.y(); ++y) {
-        for (int x = lo.x(); x <= hi.x(); ++x) blocks.insert(BlockIndex(x, y, z));
-      }
-    }
+    insertBlocksInBox(lo, hi, blocks);
   }
-  std::vector<BlockIndex> sorted(blocks.begin(), blocks.end());
-  std::sort(sorted.begin(), sorted.end(), [](const BlockIndex& a, const BlockIndex& b) {
-    return std::make_tuple(a.z(), a.y(), a.x()) < std::make_tuple(b.z(), b.y(), b.x());
-  });
-  return sorted;
+  return sortedBlocks(blocks);
 }
 
 /// Weighted average of one sample into one voxel, the weight capped.
@@ -179,7 +172,7 @@ void mergeObservation(ObjectModel& model, const ObjectObservation& observation,
     TsdfBlock block = existing ? *existing : TsdfBlock{};
     bool touched = false;
     for (int i = 0; i < kVoxelsPerBlock; ++i) {
-      const GlobalVoxelIndex v = b * kBlockEdge + Eigen::Vector3i(i % 8, i / 8 % 8, i / 64);
+      const GlobalVoxelIndex v = voxelOfBlock(b, i);
       const Eigen::Vector3d p_M = voxelCenter(v, model_voxel_m).cast<double>();
       const auto sample = sampleTsdf(observation.tsdf, (T_O_M * p_M).cast<float>(), obs_min_weight);
       if (!sample) continue;

@@ -12,6 +12,7 @@
 
 #include "core/error.h"
 #include "objects/cloud_stats.h"
+#include "objects/internal/block_sets.h"
 #include "objects/object_model.h"
 
 namespace strata::objects {
@@ -87,21 +88,12 @@ PointGrid surfaceGrid(const change::LabelledSurface& surface, const Mesh& segmen
 
 /// Blocks of the session map that may hold voxels within `band_m` of a segment vertex.
 std::vector<BlockIndex> candidateBlocks(const Mesh& segment, float band_m, float block_m) {
-  std::unordered_set<BlockIndex, BlockIndexHash> blocks;
+  BlockSet blocks;
   for (const Eigen::Vector3f& p : segment.vertices) {
-    const Eigen::Vector3i lo = cellOf(p - Eigen::Vector3f::Constant(band_m), block_m);
-    const Eigen::Vector3i hi = cellOf(p + Eigen::Vector3f::Constant(band_m), block_m);
-    for (int z = lo.z(); z <= hi.z(); ++z) {
-      for (int y = lo.y(); y <= hi.y(); ++y) {
-        for (int x = lo.x(); x <= hi.x(); ++x) blocks.insert(BlockIndex(x, y, z));
-      }
-    }
+    insertBlocksInBox(cellOf(p - Eigen::Vector3f::Constant(band_m), block_m),
+                      cellOf(p + Eigen::Vector3f::Constant(band_m), block_m), blocks);
   }
-  std::vector<BlockIndex> sorted(blocks.begin(), blocks.end());
-  std::sort(sorted.begin(), sorted.end(), [](const BlockIndex& a, const BlockIndex& b) {
-    return std::make_tuple(a.z(), a.y(), a.x()) < std::make_tuple(b.z(), b.y(), b.x());
-  });
-  return sorted;
+  return sortedBlocks(blocks);
 }
 
 /// Copies the session voxels whose nearest surface is the segment's into `out`, shifted by
@@ -117,7 +109,7 @@ void copyObjectBand(const TsdfMap& session_map, const change::LabelledSurface& s
     for (int i = 0; i < kVoxelsPerBlock; ++i) {
       const TsdfVoxel& voxel = (*block)[static_cast<std::size_t>(i)];
       if (voxel.weight <= 0.0f) continue;
-      const GlobalVoxelIndex v = b * kBlockEdge + Eigen::Vector3i(i % 8, i / 8 % 8, i / 64);
+      const GlobalVoxelIndex v = voxelOfBlock(b, i);
       if (!grid.nearestIsSegment(voxelCenter(v, voxel_m))) continue;
       out.allocateVoxel(v - offset_voxels) = voxel;
     }

@@ -272,6 +272,18 @@ std::optional<Refined> refineBest(const Cloud::Ptr& source, const Cloud::Ptr& ta
   return best;
 }
 
+/// scoreFit the other way round: the target's points against the source moved by `T`.
+double targetCoverage(const Cloud& source, const Cloud& target, const Eigen::Matrix4f& T,
+                      const RegistrationConfig& config) {
+  Cloud::Ptr moved(new Cloud);
+  pcl::transformPointCloudWithNormals(source, *moved, T);
+  pcl::KdTreeFLANN<pcl::PointNormal> moved_tree;
+  moved_tree.setInputCloud(moved);
+  return scoreFit(target, moved_tree, Eigen::Matrix4f::Identity(),
+                  config.inlier_distance_voxels * config.voxel_size_m)
+      .fitness;
+}
+
 }  // namespace
 
 void RegistrationConfig::validate() const {
@@ -337,6 +349,7 @@ RegistrationResult registerSurfaces(const SurfaceCloud& source, const SurfaceClo
     result.T_target_source.matrix() = best_T.cast<double>();
     result.fitness = best_fit.fitness;
     result.rmse_m = best_fit.rmse_m;
+    result.target_coverage = targetCoverage(*source_pcl, *target_pcl, best_T, config);
     if (best_fit.fitness <= 0.0) return finish("no source point near the target after ICP");
     return finish("");
   } catch (const pcl::PCLException& e) {

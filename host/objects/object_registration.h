@@ -45,8 +45,11 @@ struct RegistrationResult {
   bool converged = false;
   std::string reason;  // "" when converged, else why not
   Eigen::Isometry3d T_target_source = Eigen::Isometry3d::Identity();
-  double fitness = 0.0;     // share of source points within the inlier distance after ICP
-  double rmse_m = 0.0;      // of those inliers
+  double fitness = 0.0;  // share of source points within the inlier distance after ICP
+  double rmse_m = 0.0;   // of those inliers
+  /// The fitness the other way round: share of target points within the inlier distance of the
+  /// registered source (how much of the target the source covers).
+  double target_coverage = 0.0;
   int correspondences = 0;  // feature correspondences RANSAC started from
   double ms = 0.0;
 };
