@@ -23,18 +23,11 @@ namespace fs = std::filesystem;
 
 fs::path freshTestDir(const std::string& name) {
   // The process id keeps two test runs on one machine (two build trees) out of each other's way.
-  const fs::path dir = fs::temp_directory_path() /
-                       ("strata_test_lcm_" + name + "_" + std::to_string(::getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("strata_test_lcm_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
-}
-
-std::string readText(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
 }
 
 std::string namespaceUnavailable() {
@@ -105,8 +98,7 @@ FrameLogWriter::FrameLogWriter(const fs::path& path, const CameraIntrinsics& int
 }
 
 template <typename Message>
-void FrameLogWriter::write(const std::string& channel, std::int64_t utime,
-                           const Message& message) {
+void FrameLogWriter::write(const std::string& channel, std::int64_t utime, const Message& message) {
   std::vector<std::uint8_t> bytes(static_cast<std::size_t>(message.getEncodedSize()));
   message.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
   lcm::LogEvent event{};

@@ -5,21 +5,20 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <lcm/lcm-cpp.hpp>
 #include <string>
 #include <vector>
-
-#include <lcm/lcm-cpp.hpp>
 
 #include "core/types.h"
 #include "strata/command_t.hpp"
 #include "strata/esdf_slice_t.hpp"
 #include "strata/map_stats_t.hpp"
 #include "strata/mesh_update_t.hpp"
+#include "test_utils.h"  // readText
 
 namespace strata::test {
 
 std::filesystem::path freshTestDir(const std::string& name);
-std::string readText(const std::filesystem::path& path);
 
 /// Why processes cannot talk over multicast in a network namespace of their own here, so that
 /// no traffic can leave the machine ("" when they can): 'unshare --net' refused (it needs root or

@@ -2,7 +2,6 @@
 // the earlier sessions as change events, with their meshes, and the object database's models
 // they created or extended (object_update_t), and writes the database file.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -16,6 +15,7 @@
 #include "lcm_test_helpers.h"
 #include "objects/object_database.h"
 #include "objects/object_database_file.h"
+#include "test_utils.h"
 
 namespace strata::test {
 namespace {
@@ -76,10 +76,7 @@ TEST(LcmMapperSessions, EndingASessionPublishesItsChangedObjects) {
   apps::MapperOptions options = testMapperOptions();
   options.change_detection = true;
   options.mesh_rate_hz = 1.0;
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() /
-                                    ("strata_test_lcm_objects_" + std::to_string(::getpid()));
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
+  const std::filesystem::path dir = freshTempDir("lcm_objects");
   const std::string objects_file = (dir / "room.objects").string();
   options.objects_path = objects_file;
   InProcessMapper mapper(options);
@@ -122,10 +119,7 @@ TEST(LcmMapperSessions, EndingASessionPublishesItsChangedObjects) {
 }
 
 TEST(LcmMapperSessions, ACorruptObjectDatabaseIsRefusedAndLeftUntouched) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() /
-                                    ("strata_test_lcm_objects_bad_" + std::to_string(::getpid()));
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
+  const std::filesystem::path dir = freshTempDir("lcm_objects_bad");
   const std::string path = (dir / "map.objects").string();
   const std::string garbage = "not an object database";
   {

@@ -13,18 +13,12 @@
 #include "object_test_scene.h"
 #include "objects/object_database_file.h"
 #include "store/session_store.h"
+#include "test_utils.h"
 
 namespace strata::objects {
 namespace {
 
 namespace fs = std::filesystem;
-
-fs::path freshDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("strata_objects_file_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
 
 void expectSameTsdf(const TsdfMap& a, const TsdfMap& b) {
   EXPECT_EQ(a.config().voxel_size_m, b.config().voxel_size_m);
@@ -82,7 +76,7 @@ void writeBytes(const fs::path& path, std::vector<std::uint8_t> bytes) {
 TEST(ObjectDatabaseFile, RoundTripKeepsModelsInstancesAndVoxels) {
   const ObjectDatabase& database = test::threeSessions().database;
   ASSERT_FALSE(database.models().empty());
-  const fs::path dir = freshDir("round_trip");
+  const fs::path dir = test::freshTempDir("objects_file_round_trip");
   const fs::path path = dir / "db.objects";
   saveObjectDatabase(database, path.string());
   const ObjectDatabase loaded = loadObjectDatabase(path.string());
@@ -94,7 +88,7 @@ TEST(ObjectDatabaseFile, RoundTripKeepsModelsInstancesAndVoxels) {
 
 TEST(ObjectDatabaseFile, BadFilesAreRefusedNamingTheFile) {
   const ObjectDatabase& database = test::threeSessions().database;
-  const fs::path dir = freshDir("bad");
+  const fs::path dir = test::freshTempDir("objects_file_bad");
   const fs::path good = dir / "good.objects";
   saveObjectDatabase(database, good.string());
   const std::vector<std::uint8_t> bytes = readFile(good.string());
@@ -138,7 +132,7 @@ TEST(ObjectDatabaseFile, BadFilesAreRefusedNamingTheFile) {
 }
 
 TEST(ObjectDatabaseFile, FailedSaveLeavesThePreviousFileIntact) {
-  const fs::path dir = freshDir("failed_save");
+  const fs::path dir = test::freshTempDir("objects_file_failed_save");
   const fs::path path = dir / "db.objects";
   saveObjectDatabase(ObjectDatabase{}, path.string());
   const std::vector<std::uint8_t> before = readFile(path.string());
@@ -160,7 +154,7 @@ TEST(ObjectDatabaseFile, FailedSaveLeavesThePreviousFileIntact) {
 
 TEST(ObjectDatabaseFile, StoreCopyRoundTrips) {
   const ObjectDatabase& database = test::threeSessions().database;
-  const fs::path dir = freshDir("store");
+  const fs::path dir = test::freshTempDir("objects_file_store");
   const fs::path path = dir / "map.sqlite";
   {
     store::Store store(path.string());

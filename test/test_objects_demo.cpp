@@ -13,6 +13,7 @@
 #include "io/image_io.h"
 #include "mesh/ply.h"
 #include "objects/object_database_file.h"
+#include "test_utils.h"
 
 namespace strata {
 namespace {
@@ -23,13 +24,6 @@ fs::path freshDir(const std::string& name) {
   const fs::path dir = fs::temp_directory_path() / name;
   fs::remove_all(dir);
   return dir;
-}
-
-std::string readText(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
 }
 
 TEST(ObjectsCommand, BadInputExitsTwoNamingIt) {
@@ -85,7 +79,7 @@ TEST(ObjectsCommand, SimulatedSessionsWriteEveryOutputAndTheirScore) {
   std::printf("[ objects ] %s\n", summary.c_str());
   EXPECT_NE(summary.find("against the truth of world 'room'"), std::string::npos) << summary;
   const fs::path out(options.out_dir);
-  const std::string json = readText(out / "objects.json");
+  const std::string json = test::readText(out / "objects.json");
   for (const char* key : {"\"models\": [", "\"segments\": [", "\"truth\": {", "\"precision\": ",
                           "\"T_W_O\": [[", "\"centroid_m\": [", "\"match_score\": "}) {
     EXPECT_NE(json.find(key), std::string::npos) << key;
@@ -144,7 +138,7 @@ TEST(ObjectsDemo, DefaultRoomMeetsItsTargets) {
   EXPECT_LE(e.pose.median_rotation_deg, 2.0);
   EXPECT_LT(e.growth_max, 2.0) << "no model grows into a ball of merged shapes";
   const fs::path out(options.out_dir);
-  const std::string report_json = readText(out / "report.json");
+  const std::string report_json = test::readText(out / "report.json");
   EXPECT_NE(report_json.find("\"objects\": {\"models\": "), std::string::npos);
   EXPECT_TRUE(fs::exists(out / "objects.json"));
   EXPECT_TRUE(fs::exists(out / "objects.sodb"));

@@ -1,7 +1,11 @@
 #include "test_utils.h"
 
+#include <unistd.h>
+
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 
 namespace strata::test {
 
@@ -19,6 +23,21 @@ std::string sharedDataPath(const std::string& relative) {
   if (root.empty()) return {};
   const std::filesystem::path path = std::filesystem::path(root) / relative;
   return std::filesystem::exists(path) ? path.string() : std::string();
+}
+
+std::filesystem::path freshTempDir(const std::string& name) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                                    ("strata_test_" + name + "_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+std::string readText(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
 }
 
 }  // namespace strata::test
