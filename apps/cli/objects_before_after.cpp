@@ -14,16 +14,6 @@ constexpr Rgb kText = {20, 20, 20};
 constexpr int kLabelHeightPx = 22;
 constexpr int kGapPx = 4;
 
-void paste(ColorImage& sheet, const ColorImage& tile, int x0, int y0) {
-  for (int y = 0; y < tile.height_px; ++y) {
-    for (int x = 0; x < tile.width_px; ++x) {
-      const std::size_t from = (static_cast<std::size_t>(y) * tile.width_px + x) * 3;
-      const std::size_t to = (static_cast<std::size_t>(y0 + y) * sheet.width_px + x0 + x) * 3;
-      std::copy_n(&tile.rgb[from], 3, &sheet.rgb[to]);
-    }
-  }
-}
-
 /// The models to show: two observations or more, most merged observations first (then larger).
 std::vector<const objects::ObjectModel*> mergedModels(const objects::ObjectDatabase& db,
                                                       int count) {
@@ -80,12 +70,12 @@ ColorImage renderBeforeAfter(const ObjectsRun& run, const DiffResult& result,
     const int x0 = kGapPx + i * (size_px + kGapPx);
     drawText(sheet, x0 + 2, kGapPx + 4, "MODEL " + std::to_string(m.id) + ": LARGEST VIEW", 1,
              kText);
-    paste(sheet,
-          renderLargestObservation(m, result, maps, run.database.config().observation, size_px), x0,
-          kGapPx + kLabelHeightPx);
+    pasteTile(sheet,
+              renderLargestObservation(m, result, maps, run.database.config().observation, size_px),
+              x0, kGapPx + kLabelHeightPx);
     drawText(sheet, x0 + 2, kGapPx + row_px + 4,
              "MERGED: " + std::to_string(m.merged_observations) + " OBSERVATIONS", 1, kText);
-    paste(sheet, renderModelView(m, size_px), x0, kGapPx + row_px + kLabelHeightPx);
+    pasteTile(sheet, renderModelView(m, size_px), x0, kGapPx + row_px + kLabelHeightPx);
   }
   return sheet;
 }

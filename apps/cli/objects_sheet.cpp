@@ -29,7 +29,9 @@ Eigen::Isometry3d lookAt(const Eigen::Vector3d& eye, const Eigen::Vector3d& targ
   return T_W_C;
 }
 
-void paste(ColorImage& sheet, const ColorImage& tile, int x0, int y0) {
+}  // namespace
+
+void pasteTile(ColorImage& sheet, const ColorImage& tile, int x0, int y0) {
   for (int y = 0; y < tile.height_px; ++y) {
     for (int x = 0; x < tile.width_px; ++x) {
       const std::size_t from = (static_cast<std::size_t>(y) * tile.width_px + x) * 3;
@@ -38,8 +40,6 @@ void paste(ColorImage& sheet, const ColorImage& tile, int x0, int y0) {
     }
   }
 }
-
-}  // namespace
 
 ModelCamera modelCamera(const objects::ObjectModel& model, int size_px) {
   Eigen::AlignedBox3d box;
@@ -90,7 +90,7 @@ ColorImage renderModelSheet(const std::vector<objects::ObjectModel>& models, int
              std::to_string(m.instances.size()) + " INSTANCES, " +
                  std::to_string(m.merged_observations) + " MERGED",
              1, kText);
-    paste(sheet, renderModelView(m, size_px), x0, y0 + kLabelHeightPx);
+    pasteTile(sheet, renderModelView(m, size_px), x0, y0 + kLabelHeightPx);
   }
   return sheet;
 }

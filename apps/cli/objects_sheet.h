@@ -18,6 +18,9 @@ struct ModelCamera {
 };
 ModelCamera modelCamera(const objects::ObjectModel& model, int size_px);
 
+/// Copies `tile` into `sheet` with its top-left corner at (x0, y0); the tile must fit.
+void pasteTile(ColorImage& sheet, const ColorImage& tile, int x0, int y0);
+
 /// Shaded raycast of `tsdf` (any frame F) seen by `intrinsics` at T_F_C.
 ColorImage renderTsdfView(const TsdfMap& tsdf, const CameraIntrinsics& intrinsics,
                           const Eigen::Isometry3d& T_F_C);
