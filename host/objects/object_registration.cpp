@@ -291,7 +291,6 @@ void RegistrationConfig::validate() const {
     if (!ok) throw InputError(std::string("RegistrationConfig.") + field + " " + why);
   };
   require(std::isfinite(voxel_size_m) && voxel_size_m > 0.0f, "voxel_size_m", "must be > 0");
-  require(normal_radius_voxels > 0.0f, "normal_radius_voxels", "must be > 0");
   require(feature_radius_voxels > 1.0f, "feature_radius_voxels", "must be > 1");
   require(inlier_distance_voxels > 0.0f, "inlier_distance_voxels", "must be > 0");
   require(ransac_iterations > 0, "ransac_iterations", "must be > 0");

@@ -16,7 +16,6 @@ namespace strata::objects {
 
 struct RegistrationConfig {
   float voxel_size_m = 0.02f;           // of the clouds; radii below are in these voxels
-  float normal_radius_voxels = 2.5f;    // (normals come with the clouds; kept for keypoints)
   float feature_radius_voxels = 5.0f;   // FPFH support
   float inlier_distance_voxels = 1.5f;  // RANSAC and fitness inlier bound
   int ransac_iterations = 20000;
