@@ -15,6 +15,7 @@ PACKAGES=(
   libsqlite3-dev
   libhnswlib-dev
   libpcl-dev
+  libompl-dev
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

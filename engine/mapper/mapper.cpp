@@ -192,6 +192,11 @@ const EsdfQuery& Mapper::query() const {
 
 const EsdfMap& Mapper::esdf() const { return query().map(); }
 
+DeviceEsdf* Mapper::deviceEsdf() {
+  requireEsdf("deviceEsdf");
+  return impl_->esdf_fresh && impl_->esdf_layer == liveLayer() ? impl_->esdf.get() : nullptr;
+}
+
 EsdfSample Mapper::distance(const Eigen::Vector3f& p_W) const {
   return query().sample(p_W);
 }

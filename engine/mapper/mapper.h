@@ -112,6 +112,10 @@ class Mapper {
                   UnknownPolicy unknown = UnknownPolicy::kOccupied) const;
   /// The ESDF of the last update (the host copy the queries read).
   const EsdfMap& esdf() const;
+  /// The ESDF on the device as of the last updateEsdf(), for batched device queries
+  /// (EsdfQueryKernel) without downloading it; nullptr before the first update. Valid until the
+  /// next updateEsdf() or session change.
+  DeviceEsdf* deviceEsdf();
 
   /// Mesh of the live layer (downloads it: device -> host).
   Mesh mesh(const MeshOptions& options = {});
