@@ -98,6 +98,12 @@ TEST(LcmMapperSessions, EndingASessionPublishesItsChangedObjects) {
   EXPECT_EQ(stats.session, 1);
   EXPECT_FALSE(stats.session_active);
 
+  // The database is updated on a thread of its own after the session end: its updates follow.
+  EXPECT_TRUE(InProcessMapper::waitFor([&] {
+    std::lock_guard<std::mutex> lock(mapper.outputs().mutex);
+    return !mapper.outputs().object_updates.empty();
+  })) << "no object update within a minute of the session end";
+  ASSERT_TRUE(mapper.stop());  // the worker is done: its core may be read from here
   std::lock_guard<std::mutex> lock(mapper.outputs().mutex);
   expectObjectUpdates(mapper.outputs().object_updates, mapper.outputs().change_events, 1);
   const objects::ObjectDatabase* database = mapper.core().objectDatabase();

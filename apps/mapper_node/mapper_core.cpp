@@ -78,7 +78,9 @@ MapperCore::MapperCore(vk::Context& context, const MapperOptions& options, const
   }
 }
 
-MapperCore::~MapperCore() = default;
+MapperCore::~MapperCore() {
+  if (object_job_.valid()) object_job_.wait();  // it works on objects_
+}
 
 bool MapperCore::fuse(const lcm_io::ReadyFrame& ready, keyframe_score_t* score) {
   const auto start = std::chrono::steady_clock::now();
@@ -140,47 +142,91 @@ std::vector<change_event_t> MapperCore::stopSession(std::int64_t utime) {
 }
 
 std::vector<change_event_t> MapperCore::endSession(std::int64_t utime) {
-  const SessionResult result = mapper_->endSession();
+  SessionResult result = mapper_->endSession();
   std::vector<change_event_t> events;
   if (!mapper_->config().change_detection) return events;
   for (const change::DiscoveredObject& object : result.objects) {
     events.push_back(
         lcm_io::encodeChangeEvent(object, static_cast<int>(result.objects.size()), utime));
   }
-  if (objects_) addToObjectDatabase(result, utime);
+  if (objects_) addToObjectDatabase(std::move(result), utime);
   return events;
 }
 
-void MapperCore::addToObjectDatabase(const SessionResult& result, std::int64_t utime) {
-  object_updates_.clear();
+void MapperCore::addToObjectDatabase(SessionResult result, std::int64_t utime) {
+  finishObjectJob();                // sessions enter the database in order, one at a time
   if (!result.session_map) return;  // no evidence kept: nothing to build models from
   const int session = next_object_session_++;
+  // NOTE: the evidence (the session's map and surface) moves to the database thread, which alone
+  // touches objects_ until it is done; the mapper keeps fusing on this thread.
+  auto evidence = std::make_shared<SessionResult>(std::move(result));
+  object_job_ = std::async(std::launch::async, [this, evidence, session, utime] {
+    return objectUpdatesOf(*evidence, session, utime);
+  });
+}
+
+std::vector<object_update_t> MapperCore::objectUpdatesOf(const SessionResult& result, int session,
+                                                         std::int64_t utime) {
   const std::vector<objects::SegmentOutcome> outcomes =
       objects_->addSession(session, *result.session_map, result.surface, result.objects);
   std::map<int, bool> touched;  // model id -> founded by this session
   for (const objects::SegmentOutcome& o : outcomes) {
     if (o.model_id > 0) touched[o.model_id] = touched[o.model_id] || o.new_model;
   }
+  std::vector<object_update_t> updates;
   int index = 0;
   for (const auto& [id, founded] : touched) {
     const objects::ObjectModel* model = objects_->findModel(id);
     if (model == nullptr) continue;
-    object_updates_.push_back(lcm_io::encodeObjectUpdate(*model, session, founded, ++index,
-                                                         static_cast<int>(touched.size()), utime));
+    updates.push_back(lcm_io::encodeObjectUpdate(*model, session, founded, ++index,
+                                                 static_cast<int>(touched.size()), utime));
+  }
+  return updates;
+}
+
+void MapperCore::finishObjectJob() {
+  if (!object_job_.valid()) return;
+  try {
+    std::vector<object_update_t> updates = object_job_.get();
+    object_updates_.insert(object_updates_.end(), updates.begin(), updates.end());
+  } catch (...) {
+    object_error_ = std::current_exception();
   }
 }
 
-std::vector<object_update_t> MapperCore::takeObjectUpdates() {
+bool MapperCore::objectUpdatesReady() const {
+  if (object_job_.valid()) {
+    return object_job_.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
+  }
+  return !object_updates_.empty() || object_error_ != nullptr;
+}
+
+std::vector<object_update_t> MapperCore::takeObjectUpdates(bool wait) {
+  if (object_job_.valid() &&
+      (wait || object_job_.wait_for(std::chrono::seconds(0)) == std::future_status::ready)) {
+    finishObjectJob();
+  }
+  if (object_error_) {
+    std::exception_ptr error = object_error_;
+    object_error_ = nullptr;
+    std::rethrow_exception(error);
+  }
   std::vector<object_update_t> updates;
   updates.swap(object_updates_);
   return updates;
 }
 
 bool MapperCore::saveObjects() {
+  finishObjectJob();
   const std::string path = options_.objectsFile();
   if (!objects_ || path.empty()) return false;
   objects::saveObjectDatabase(*objects_, path);
   return true;
+}
+
+const objects::ObjectDatabase* MapperCore::objectDatabase() {
+  finishObjectJob();
+  return objects_.get();
 }
 
 TsdfMap MapperCore::downloadMap() { return mapper_->download(); }

@@ -3,8 +3,13 @@
 // changed blocks, an ESDF slice, sessions and their change events, saving the map — each turned
 // into or out of its message. strata-mapper's node calls it from its one worker thread; tests call
 // it directly. With change detection on, every frame is fused once, into the session's layer.
-// Thread safety: not thread safe.
+// The object database is updated at a session end on a thread of its own (seconds for a room),
+// so the frames of the next session keep being fused meanwhile; its updates are handed over when
+// it is done (objectUpdatesReady / takeObjectUpdates).
+// Thread safety: not thread safe (the database thread is private: every method that reads or
+// writes the database waits for it first).
 #include <cstdint>
+#include <future>
 #include <memory>
 #include <string>
 #include <vector>
@@ -56,14 +61,20 @@ class MapperCore {
   /// Ends the open session; its discovered objects as events. Throws InputError when none is open.
   std::vector<change_event_t> stopSession(std::int64_t utime);
 
-  /// The object database's updates of the last session end (one per model it created or
-  /// extended), handed over once. Empty without the database.
-  std::vector<object_update_t> takeObjectUpdates();
-  /// Writes the object database atomically to options.objectsFile(); false when there is no
-  /// database or no file. Throws Error when the write fails (the previous file stays).
+  /// True when a session end's database update has finished and its updates wait to be taken
+  /// (or it failed: takeObjectUpdates then throws its error). Does not wait.
+  bool objectUpdatesReady() const;
+  /// The object database's updates of the session ends handed over since the last call (one per
+  /// model each created or extended), once; waits for an update still running when `wait`.
+  /// Empty without the database. Rethrows the error of a failed update (the database is then as
+  /// before that session: ObjectDatabase::addSession changes nothing when it throws).
+  std::vector<object_update_t> takeObjectUpdates(bool wait = false);
+  /// Writes the object database atomically to options.objectsFile() (after waiting for an update
+  /// still running); false when there is no database or no file. Throws Error when the write
+  /// fails (the previous file stays).
   bool saveObjects();
-  /// nullptr without the database.
-  const objects::ObjectDatabase* objectDatabase() const { return objects_.get(); }
+  /// nullptr without the database. Waits for an update still running.
+  const objects::ObjectDatabase* objectDatabase();
 
   /// Downloads the map and writes it atomically (map_file.h).
   void saveMap(const std::string& path);
@@ -84,7 +95,13 @@ class MapperCore {
 
  private:
   std::vector<change_event_t> endSession(std::int64_t utime);
-  void addToObjectDatabase(const SessionResult& result, std::int64_t utime);
+  void addToObjectDatabase(SessionResult result, std::int64_t utime);
+  /// The database's work for one session end, on the database thread.
+  std::vector<object_update_t> objectUpdatesOf(const SessionResult& result, int session,
+                                               std::int64_t utime);
+  /// Waits for a running database update and keeps its updates (or its error) for
+  /// takeObjectUpdates.
+  void finishObjectJob();
 
   vk::Context& context_;
   MapperOptions options_;
@@ -98,6 +115,8 @@ class MapperCore {
   std::unique_ptr<objects::ObjectDatabase> objects_;
   int next_object_session_ = 0;  // the database's session numbers continue across restarts
   std::vector<object_update_t> object_updates_;
+  std::future<std::vector<object_update_t>> object_job_;  // the running database update
+  std::exception_ptr object_error_;                       // of the last finished one
 };
 
 }  // namespace strata::apps

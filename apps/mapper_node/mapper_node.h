@@ -12,11 +12,11 @@
 #include <string>
 #include <vector>
 
-#include "mapper_node/mapper_core.h"
-#include "mapper_node/mapper_options.h"
 #include "lcm/frame_assembler.h"
 #include "lcm/frame_queue.h"
 #include "lcm/input_stats.h"
+#include "mapper_node/mapper_core.h"
+#include "mapper_node/mapper_options.h"
 #include "strata/command_t.hpp"
 #include "strata/map_stats_t.hpp"
 
@@ -63,7 +63,9 @@ class MapperNode {
   void publishMesh(bool full);
   void publishEsdf();
   void publishChangeEvents(const std::vector<change_event_t>& events);
-  void publishObjectUpdates();
+  /// Publishes the object database's updates of a finished session end and saves the database;
+  /// with `wait`, waits for one still running first (at exit).
+  void publishObjectUpdates(bool wait = false);
   bool saveOnExit();
   void log(const std::string& line) const;
 

@@ -47,6 +47,7 @@ bool MapperNode::run(const std::atomic<bool>& stop) {
   try {
     publishMesh(false);
     publishStats();
+    publishObjectUpdates(true);
   } catch (const std::exception& e) {
     log(std::string("could not publish the last update: ") + e.what());  // the save matters more
   }
@@ -55,6 +56,7 @@ bool MapperNode::run(const std::atomic<bool>& stop) {
 
 void MapperNode::workOnce() {
   runCommands();
+  if (core_.objectUpdatesReady()) publishObjectUpdates();
   bool fused = false;
   if (auto frame = queue_.pop(kQueueWait)) {
     fuseOne(*frame);
@@ -135,13 +137,11 @@ void MapperNode::runCommand(const command_t& command) {
   const std::int64_t now = lcm_io::nowUtime();
   switch (command.command) {
     case command_t::START_SESSION:
-      publishChangeEvents(core_.startSession(now));
-      publishObjectUpdates();
+      publishChangeEvents(core_.startSession(now));  // the database updates in the background
       break;
     case command_t::STOP_SESSION:
       publishMesh(false);
       publishChangeEvents(core_.stopSession(now));
-      publishObjectUpdates();
       break;
     case command_t::SAVE_MAP: {
       const std::string path = command.argument.empty() ? options_.map_path : command.argument;
@@ -177,8 +177,16 @@ void MapperNode::publishChangeEvents(const std::vector<change_event_t>& events) 
   }
 }
 
-void MapperNode::publishObjectUpdates() {
-  const std::vector<object_update_t> updates = core_.takeObjectUpdates();
+void MapperNode::publishObjectUpdates(bool wait) {
+  std::vector<object_update_t> updates;
+  try {
+    updates = core_.takeObjectUpdates(wait);
+  } catch (const std::exception& e) {
+    log(std::string("object database: a session could not be added (the database is as before "
+                    "it): ") +
+        e.what());
+    return;
+  }
   for (const object_update_t& update : updates) output_.publish(options_.channels.objects, &update);
   const objects::ObjectDatabase* database = core_.objectDatabase();
   if (database == nullptr) return;
