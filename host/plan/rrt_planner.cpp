@@ -57,8 +57,11 @@ std::string endpointProblem(CollisionChecker& checker, const RrtOptions& options
                             const PlanRequest& request) {
   if (!options.bounds_W.contains(request.start_W)) return "start outside the planning bounds";
   if (!options.bounds_W.contains(request.goal_W)) return "goal outside the planning bounds";
+  // As zero-length motions: the radius of the motion checks' samples, so an end that passes can
+  // also be left (a plain sphere test of the radius may pass where no motion does).
   const std::vector<std::uint8_t> free =
-      checker.spheresFree({request.start_W, request.goal_W}, request.radius_m, request.unknown);
+      checker.segmentsFree({{request.start_W, request.start_W}, {request.goal_W, request.goal_W}},
+                           request.radius_m, request.unknown);
   if (free[0] == 0) return "start in collision (or unknown space under kOccupied)";
   if (free[1] == 0) return "goal in collision (or unknown space under kOccupied)";
   return {};

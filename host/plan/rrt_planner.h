@@ -1,9 +1,13 @@
 #pragma once
 // RRT* on OMPL (informed RRT* by default) for a spherical robot in the world frame, with every
-// collision test through a CollisionChecker (host or device ESDF): a state is valid when the
-// robot's sphere is free, a motion when its capsule is (CollisionChecker::segmentFree: one batch,
-// one device dispatch per motion). After OMPL's solve, the path is shortened with batched capsule
-// checks (path_shortcut.h) and checked once more as a whole. docs/plan.md "RRT* (OMPL)".
+// collision test through a CollisionChecker (host or device ESDF): a motion is valid when the
+// robot's capsule along it is free (CollisionChecker::segmentFree: one batch, one device dispatch
+// per motion), a state when the zero-length capsule at it is (the sphere test at the capsule
+// samples' radius: a start that passes is not then refused by every motion from it because the
+// motions' samples are a little larger). Plain RRT*'s
+// uniform samples are drawn in batches and pre-tested in one call each. After OMPL's solve, the
+// path is shortened with batched capsule checks (path_shortcut.h) and checked once more as a
+// whole. docs/plan.md "RRT* (OMPL)".
 //
 // Reproducibility: OMPL draws from a process-wide seed generator. plan() seeds it with
 // PlanRequest::seed and builds every OMPL object (space, samplers, planner, nearest-neighbour
