@@ -12,7 +12,7 @@ namespace strata::bench {
 
 struct PlanCollisionBenchOptions {
   std::string world = "room";
-  int frames = 150;  // fused frames of session 0
+  int frames = 450;  // fused frames of session 0 (15 s: the camera crosses the room)
   float voxel_size_m = 0.05f;
   float radius_m = 0.3f;
   float segment_length_m = 1.0f;
