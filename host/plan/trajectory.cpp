@@ -127,10 +127,14 @@ Trajectory timeGeometry(const std::vector<GeoPoint>& g, const TrajectoryLimits& 
       const float ds = (g[k].p_W - g[k - 1].p_W).norm();
       t_s += 2.0 * ds / std::max(1e-9f, v[k - 1] + v[k]);
     }
-    // Tangential acceleration of the interval after the point (before it, at the end).
-    const std::size_t j = k + 1 < g.size() ? k : k - 1;
-    const float ds = std::max(1e-9f, (g[j + 1].p_W - g[j].p_W).norm());
-    const float a_t = (v[j + 1] * v[j + 1] - v[j] * v[j]) / (2.0f * ds);
+    // Tangential acceleration of the interval after the point (before it, at the end; none for
+    // a single point).
+    float a_t = 0.0f;
+    if (g.size() > 1) {
+      const std::size_t j = k + 1 < g.size() ? k : k - 1;
+      const float ds = std::max(1e-9f, (g[j + 1].p_W - g[j].p_W).norm());
+      a_t = (v[j + 1] * v[j + 1] - v[j] * v[j]) / (2.0f * ds);
+    }
     TrajectorySample s;
     s.t_s = t_s;
     s.p_W = g[k].p_W;
