@@ -10,6 +10,7 @@
 #include "lcm_command.h"
 #include "select_command.h"
 #include "occupancy_command.h"
+#include "plan_collision_command.h"
 #include "align_command.h"
 #include "objects_command.h"
 #include "posegraph_command.h"
@@ -49,6 +50,8 @@ int main(int argc, char** argv) {
   CLI::App* posegraph = strata::bench::addPoseGraphCommand(app, posegraph_options);
   strata::bench::ObjectsBenchOptions objects_options;
   CLI::App* objects = strata::bench::addObjectsCommand(app, objects_options);
+  strata::bench::PlanCollisionBenchOptions plan_collision_options;
+  CLI::App* plan_collision = strata::bench::addPlanCollisionCommand(app, plan_collision_options);
   strata::bench::AllBenchOptions all_options;
   CLI::App* all = strata::bench::addAllCommand(app, all_options);
   try {
@@ -70,6 +73,9 @@ int main(int argc, char** argv) {
   if (posegraph->parsed()) return strata::bench::runPoseGraphBench(posegraph_options);
   if (align->parsed()) return strata::bench::runAlignBench(align_options);
   if (objects->parsed()) return strata::bench::runObjectsBench(objects_options);
+  if (plan_collision->parsed()) {
+    return strata::bench::runPlanCollisionBench(plan_collision_options);
+  }
   if (all->parsed()) return strata::bench::runAllBench(all_options);
   return 2;
 }
