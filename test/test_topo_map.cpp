@@ -248,5 +248,36 @@ TEST_F(TopoMapTest, IncrementalUpdateConnectsLikeAFullRebuild) {
   expectSameConnectivity(topo, *closed_);
 }
 
+TEST_F(TopoMapTest, LandmarkBoundsHoldAndKeepTheShortestRoute) {
+  const TopoMap topo(*open_, kOptions);
+  const TopoLandmarks& marks = topo.landmarks();
+  ASSERT_GT(marks.count(), 1);
+  // |d(L, p) - d(L, q)| <= d(p, q) against exact graph distances from a few portals.
+  const auto n = static_cast<std::int32_t>(topo.portals().size());
+  for (std::int32_t p = 0; p < n; p += std::max(1, n / 7)) {
+    const std::vector<float> from_p = topo.distancesFrom(p);
+    for (std::int32_t q = 0; q < n; ++q) {
+      for (int l = 0; l < marks.count(); ++l) {
+        EXPECT_LE(std::abs(marks.distance(l, p) - marks.distance(l, q)),
+                  from_p[static_cast<std::size_t>(q)] + 1e-4f);
+      }
+    }
+  }
+  // The bounds only prune the search: the routes are as long as without landmarks.
+  HostCollisionChecker checker(*open_);
+  TopoPlanner with(*open_, checker, kOptions);
+  TopoOptions plain = kOptions;
+  plain.landmarks = 0;
+  TopoPlanner without(*open_, checker, plain);
+  EXPECT_EQ(without.map().landmarks().count(), 0);
+  for (const auto& [start, goal] : kPairs) {
+    const PlanResult a = with.plan(request(start, goal));
+    const PlanResult b = without.plan(request(start, goal));
+    ASSERT_TRUE(a.success && b.success);
+    EXPECT_NEAR(a.length_m, b.length_m, 1e-3);
+    EXPECT_LE(with.lastExpanded(), without.lastExpanded() + 0u);
+  }
+}
+
 }  // namespace
 }  // namespace strata::plan

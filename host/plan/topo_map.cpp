@@ -157,6 +157,10 @@ void TopoMap::rebuildLinks() {
   portal_offsets_ = std::move(links.portal_offsets);
   portal_ids_ = std::move(links.portal_ids);
   block_clusters_ = std::move(links.block_clusters);
+  portal_centres_.clear();
+  for (const TopoPortal& p : portals_) portal_centres_.push_back(p.centre());
+  landmarks_ =
+      TopoLandmarks(portals_, portal_centres_, portal_offsets_, portal_ids_, options_.landmarks);
 }
 
 const std::int32_t* TopoMap::portalsBegin(std::int32_t c) const {
@@ -165,6 +169,10 @@ const std::int32_t* TopoMap::portalsBegin(std::int32_t c) const {
 
 const std::int32_t* TopoMap::portalsEnd(std::int32_t c) const {
   return portal_ids_.data() + portal_offsets_[static_cast<std::size_t>(c) + 1];
+}
+
+std::vector<float> TopoMap::distancesFrom(std::int32_t p) const {
+  return portalDistances(portals_, portal_centres_, portal_offsets_, portal_ids_, p);
 }
 
 std::size_t TopoMap::edgeCount() const {
@@ -210,9 +218,10 @@ std::vector<std::int32_t> TopoMap::components(std::int32_t* count) const {
 }
 
 std::size_t TopoMap::memoryBytes() const {
-  std::size_t bytes = clusters_.capacity() * sizeof(VoxelBox) +
-                      portals_.capacity() * sizeof(TopoPortal) +
-                      (portal_offsets_.capacity() + portal_ids_.capacity()) * sizeof(std::int32_t);
+  std::size_t bytes =
+      clusters_.capacity() * sizeof(VoxelBox) + portals_.capacity() * sizeof(TopoPortal) +
+      portal_centres_.capacity() * sizeof(Eigen::Vector3f) + landmarks_.memoryBytes() +
+      (portal_offsets_.capacity() + portal_ids_.capacity()) * sizeof(std::int32_t);
   // The lookup: each entry's key, vector header and ids, plus a bucket pointer.
   for (const auto& [b, ids] : block_clusters_) {
     bytes += sizeof(BlockIndex) + sizeof(ids) + ids.capacity() * sizeof(std::int32_t) +

@@ -24,6 +24,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "plan/topo_landmarks.h"
 #include "plan/traversability.h"
 
 namespace strata::plan {
@@ -32,6 +33,9 @@ struct TopoOptions {
   /// The robot sphere the clusters keep free (metres).
   float radius_m = 0.3f;
   UnknownPolicy unknown = UnknownPolicy::kOccupied;
+  /// Landmarks of the search's lower bound: more cut more expansions and cost count x portals
+  /// floats and a Dijkstra each to build.
+  int landmarks = 8;
 };
 
 /// Where two clusters touch: the rectangle of crossing points (world frame, metres) on the plane
@@ -69,9 +73,15 @@ class TopoMap {
   const VoxelBox& bounds() const { return bounds_; }
   const std::vector<VoxelBox>& clusters() const { return clusters_; }
   const std::vector<TopoPortal>& portals() const { return portals_; }
+  /// portals()[i].centre(), kept for the search.
+  const std::vector<Eigen::Vector3f>& portalCentres() const { return portal_centres_; }
   /// Portal ids of cluster c (its graph edges join each pair).
   const std::int32_t* portalsBegin(std::int32_t c) const;
   const std::int32_t* portalsEnd(std::int32_t c) const;
+  /// Landmark distances for the search's lower bound (topo_landmarks.h).
+  const TopoLandmarks& landmarks() const { return landmarks_; }
+  /// Graph distances from portal p to every portal (Dijkstra; infinity where not connected).
+  std::vector<float> distancesFrom(std::int32_t p) const;
   /// Graph edges: pairs of portals sharing a cluster.
   std::size_t edgeCount() const;
   /// The cluster holding voxel v, or -1 (not traversable, or outside the bounds).
@@ -92,6 +102,8 @@ class TopoMap {
   VoxelBox bounds_;
   std::vector<VoxelBox> clusters_;
   std::vector<TopoPortal> portals_;
+  std::vector<Eigen::Vector3f> portal_centres_;
+  TopoLandmarks landmarks_;
   std::vector<std::int32_t> portal_offsets_;  // per cluster, into portal_ids_ (CSR)
   std::vector<std::int32_t> portal_ids_;
   std::unordered_map<BlockIndex, std::vector<std::int32_t>, BlockIndexHash> block_clusters_;

@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
-#include <queue>
 
 #include "plan/grid_astar.h"
 
@@ -30,55 +30,110 @@ Eigen::Vector3f crossing(const TopoPortal& p, const Eigen::Vector3f& prev,
   return x.cwiseMax(p.lo_W).cwiseMin(p.hi_W);
 }
 
+// Landmarks the search reads at most (TopoOptions::landmarks beyond this are ignored).
+constexpr int kMaxLandmarks = 32;
+
 struct OpenNode {
   float f;
   std::int32_t node;
   bool operator>(const OpenNode& o) const { return f > o.f; }
 };
 
+}  // namespace
+
+struct TopoPlanner::Scratch {
+  std::vector<float> g;
+  std::vector<std::int32_t> parent;
+  std::vector<float> h;               // heuristic, computed once per node and query
+  std::vector<std::uint32_t> seen;    // == generation: g and parent are this query's
+  std::vector<std::uint32_t> closed;  // == generation: expanded in this query
+  std::vector<OpenNode> open;         // a binary heap (std::push_heap), kept for its capacity
+  std::uint32_t generation = 0;
+  std::uint64_t expanded = 0;  // portals expanded by the last query
+
+  void reset(std::size_t nodes) {
+    expanded = 0;
+    if (g.size() != nodes) {
+      g.assign(nodes, 0.0f);
+      parent.assign(nodes, -1);
+      h.assign(nodes, 0.0f);
+      seen.assign(nodes, 0);
+      closed.assign(nodes, 0);
+      generation = 0;
+    }
+    ++generation;
+    open.clear();
+  }
+};
+
+namespace {
+
 /// A* over the portal graph from `start` in cluster `from` to `goal` in cluster `to`: the
 /// portals crossed, in order; false when not connected.
 bool searchPortals(const TopoMap& map, const Eigen::Vector3f& start, std::int32_t from,
-                   const Eigen::Vector3f& goal, std::int32_t to,
+                   const Eigen::Vector3f& goal, std::int32_t to, TopoPlanner::Scratch& s,
                    std::vector<const TopoPortal*>* route) {
   const auto& portals = map.portals();
-  const auto n = static_cast<std::int32_t>(portals.size());
-  const std::int32_t goal_node = n;  // the start is reached as parent -1
-  std::vector<float> g(portals.size() + 1, std::numeric_limits<float>::infinity());
-  std::vector<std::int32_t> parent(portals.size() + 1, -1);
-  std::vector<std::uint8_t> closed(portals.size() + 1, 0);
-  std::priority_queue<OpenNode, std::vector<OpenNode>, std::greater<OpenNode>> open;
+  const std::vector<Eigen::Vector3f>& centres = map.portalCentres();
+  const auto goal_node = static_cast<std::int32_t>(portals.size());  // the start: parent -1
+  s.reset(portals.size() + 1);
+  const std::uint32_t gen = s.generation;
+  // Graph distances from each landmark to the goal (through the goal cluster's portals).
+  const TopoLandmarks& marks = map.landmarks();
+  float to_goal[kMaxLandmarks];
+  const int landmark_count = std::min(marks.count(), kMaxLandmarks);
+  for (int l = 0; l < landmark_count; ++l) {
+    to_goal[l] = std::numeric_limits<float>::infinity();
+    for (const std::int32_t* p = map.portalsBegin(to); p != map.portalsEnd(to); ++p) {
+      to_goal[l] = std::min(to_goal[l], marks.distance(l, *p) +
+                                            (centres[static_cast<std::size_t>(*p)] - goal).norm());
+    }
+  }
+  const auto lowerBound = [&](std::int32_t node, const Eigen::Vector3f& at) {
+    float h = (at - goal).norm();
+    for (int l = 0; l < landmark_count; ++l) {
+      const float d = marks.distance(l, node);
+      if (std::isfinite(d) && std::isfinite(to_goal[l])) h = std::max(h, std::abs(to_goal[l] - d));
+    }
+    return h;
+  };
   const auto relax = [&](std::int32_t node, std::int32_t via, float cost,
                          const Eigen::Vector3f& at) {
-    if (closed[static_cast<std::size_t>(node)] || cost >= g[static_cast<std::size_t>(node)]) return;
-    g[static_cast<std::size_t>(node)] = cost;
-    parent[static_cast<std::size_t>(node)] = via;
-    open.push({cost + (node == goal_node ? 0.0f : (at - goal).norm()), node});
+    const auto i = static_cast<std::size_t>(node);
+    if (s.closed[i] == gen || (s.seen[i] == gen && cost >= s.g[i])) return;
+    if (s.seen[i] != gen) s.h[i] = node == goal_node ? 0.0f : lowerBound(node, at);
+    s.g[i] = cost;
+    s.parent[i] = via;
+    s.seen[i] = gen;
+    s.open.push_back({cost + s.h[i], node});
+    std::push_heap(s.open.begin(), s.open.end(), std::greater<OpenNode>());
   };
   const auto expandCluster = [&](std::int32_t c, std::int32_t via, float base,
                                  const Eigen::Vector3f& at) {
     for (const std::int32_t* p = map.portalsBegin(c); p != map.portalsEnd(c); ++p) {
-      const Eigen::Vector3f centre = portals[static_cast<std::size_t>(*p)].centre();
+      const Eigen::Vector3f& centre = centres[static_cast<std::size_t>(*p)];
       relax(*p, via, base + (centre - at).norm(), centre);
     }
     if (c == to) relax(goal_node, via, base + (goal - at).norm(), goal);
   };
   expandCluster(from, -1, 0.0f, start);
-  while (!open.empty()) {
-    const OpenNode top = open.top();
-    open.pop();
+  while (!s.open.empty()) {
+    std::pop_heap(s.open.begin(), s.open.end(), std::greater<OpenNode>());
+    const OpenNode top = s.open.back();
+    s.open.pop_back();
     const auto i = static_cast<std::size_t>(top.node);
-    if (closed[i]) continue;
-    closed[i] = 1;
+    if (s.closed[i] == gen) continue;
+    s.closed[i] = gen;
+    ++s.expanded;
     if (top.node == goal_node) break;
     const TopoPortal& p = portals[i];
-    expandCluster(p.a, top.node, g[i], p.centre());
-    expandCluster(p.b, top.node, g[i], p.centre());
+    expandCluster(p.a, top.node, s.g[i], centres[i]);
+    expandCluster(p.b, top.node, s.g[i], centres[i]);
   }
-  if (!closed[static_cast<std::size_t>(goal_node)]) return false;
+  if (s.closed[static_cast<std::size_t>(goal_node)] != gen) return false;
   route->clear();
-  for (std::int32_t v = parent[static_cast<std::size_t>(goal_node)]; v >= 0;
-       v = parent[static_cast<std::size_t>(v)]) {
+  for (std::int32_t v = s.parent[static_cast<std::size_t>(goal_node)]; v >= 0;
+       v = s.parent[static_cast<std::size_t>(v)]) {
     route->push_back(&portals[static_cast<std::size_t>(v)]);
   }
   std::reverse(route->begin(), route->end());
@@ -129,7 +184,14 @@ std::vector<Eigen::Vector3f> pullThroughPortals(const Eigen::Vector3f& start_W,
 }
 
 TopoPlanner::TopoPlanner(const EsdfMap& esdf, CollisionChecker& checker, const TopoOptions& options)
-    : esdf_(esdf), checker_(checker), map_(std::make_unique<TopoMap>(esdf, options)) {}
+    : esdf_(esdf),
+      checker_(checker),
+      map_(std::make_unique<TopoMap>(esdf, options)),
+      scratch_(std::make_unique<Scratch>()) {}
+
+TopoPlanner::~TopoPlanner() = default;
+
+std::uint64_t TopoPlanner::lastExpanded() const { return scratch_->expanded; }
 
 PlanResult TopoPlanner::plan(const PlanRequest& request) {
   PlanResult result;
@@ -146,7 +208,7 @@ PlanResult TopoPlanner::plan(const PlanRequest& request) {
   if (result.message.empty()) result.message = locateProblem(*map_, "goal", request.goal_W, &to);
   if (!result.message.empty()) return result;
   std::vector<const TopoPortal*> route;
-  if (!searchPortals(*map_, request.start_W, from, request.goal_W, to, &route)) {
+  if (!searchPortals(*map_, request.start_W, from, request.goal_W, to, *scratch_, &route)) {
     result.message = "no path: start and goal are not connected through free space";
     result.planning_ms = msSince(start_time);
     return result;

@@ -28,16 +28,24 @@ class TopoPlanner final : public Planner {
   /// The map's graph (clusters, portals, lists, lookup); no per-cell storage.
   std::size_t memoryBytes() const override { return map_->memoryBytes(); }
 
+  ~TopoPlanner() override;
+
   const TopoMap& map() const { return *map_; }
+  /// Portals the last query's search expanded.
+  std::uint64_t lastExpanded() const;
   /// After the ESDF changed (topo_map.h).
   void update(const std::vector<BlockIndex>& changed_blocks) {
     map_->update(esdf_, changed_blocks);
   }
 
+  /// Per-node search state kept between queries (internal).
+  struct Scratch;
+
  private:
   const EsdfMap& esdf_;
   CollisionChecker& checker_;
   std::unique_ptr<TopoMap> map_;
+  std::unique_ptr<Scratch> scratch_;
 };
 
 /// The taut path from `start_W` through `portals` (in order) to `goal_W` (topo_planner.h);
