@@ -11,6 +11,7 @@
 #include "map/map_file.h"
 #include "plan/grid_astar.h"
 #include "plan_runs.h"
+#include "plan_update.h"
 #include "plan_world_map.h"
 
 namespace strata::bench {
@@ -19,6 +20,15 @@ namespace {
 // The targets of the topological map against grid A* (docs/plan.md).
 constexpr double kMaxLengthRatio = 1.10;
 constexpr double kMinSpeedup = 100.0;
+
+/// The middle of the map's allocated bounds in x and y, at 1.5 m: the top of the benchmark's
+/// obstacle (which reaches down through the floor).
+Eigen::Vector3d worldCentre(const EsdfMap& esdf) {
+  const plan::VoxelBox b = plan::allocatedBounds(esdf);
+  const Eigen::Vector3d lo = b.lo.cast<double>() * esdf.voxel_size_m;
+  const Eigen::Vector3d hi = (b.hi + Eigen::Vector3i::Ones()).cast<double>() * esdf.voxel_size_m;
+  return Eigen::Vector3d(0.5 * (lo.x() + hi.x()), 0.5 * (lo.y() + hi.y()), 1.5);
+}
 
 Json settingsJson(const PlanBenchOptions& o) {
   return Json::object()
@@ -48,9 +58,9 @@ Json notes() {
           "length ratio: a planner's path length over grid A*'s on the pairs both solved; "
           "grid A*'s path is pruned and relaxed with the capsule test")
       .push(
-          "memory: grid A* keeps 1 byte per cell of the map's bounds plus 16 bytes of search "
-          "state per cell; the topological map keeps boxes, portals, portal lists and a block "
-          "lookup");
+          "memory: grid A* keeps 1 byte per cell of the map's bounds plus 20 bytes of search "
+          "state per cell; the topological map keeps boxes, portals, portal lists, landmark "
+          "distances and a block lookup");
 }
 
 /// Median planning time of each planner that ran, and its 95th percentile.
@@ -116,6 +126,14 @@ int runChecked(const PlanBenchOptions& o) {
           .set("speedup_at_least_100x", speedup >= kMinSpeedup)
           .set("topo_memory_over_grid_memory",
                static_cast<double>(topo.memory_bytes) / static_cast<double>(grid.memory_bytes));
+  // A box 0.6 x 0.6 x 1.5 m standing 2.5 m left of the map's middle (in the office's corridor,
+  // clear of its pillar).
+  const Eigen::Vector3d centre = worldCentre(map.esdf) - Eigen::Vector3d(2.5, 0.0, 0.0);
+  const Eigen::AlignedBox3d obstacle(centre - Eigen::Vector3d(0.3, 0.3, 10.0),
+                                     centre + Eigen::Vector3d(0.3, 0.3, 0.0));
+  bool update_ok = true;
+  std::fprintf(stderr, "strata-bench plan: topological map update after a change...\n");
+  const Json update = measureTopoUpdate(map, obstacle, plan::TopoOptions{o.radius_m}, &update_ok);
   Json report = Json::object()
                     .set("benchmark", "plan")
                     .set("machine", machineInfo("host (no device)", ""))
@@ -129,6 +147,7 @@ int runChecked(const PlanBenchOptions& o) {
                     .set("pairs", pairs.size())
                     .set("planners", planners)
                     .set("topo_vs_grid", targets)
+                    .set("topo_update", update)
                     .set("notes", notes());
   emitReport(report, o.out_path);
   std::string chart = o.chart_path;
@@ -136,7 +155,7 @@ int runChecked(const PlanBenchOptions& o) {
     chart = o.out_path.substr(0, o.out_path.rfind('.')) + ".png";
   }
   if (!chart.empty()) writeChart(chart, runs);
-  return disagreements == 0 ? 0 : 1;
+  return disagreements == 0 && update_ok ? 0 : 1;
 }
 
 }  // namespace
