@@ -10,6 +10,7 @@
 #include "core/atomic_file.h"
 #include "core/json_text.h"
 #include "io/image_io.h"
+#include "plan/grid_astar.h"
 
 namespace strata::apps {
 namespace {
@@ -55,7 +56,9 @@ int busiestLayer(const TopoMap& topo) {
 
 }  // namespace
 
-std::size_t gridMemoryBytes(const TopoMap& topo) { return topo.stats().grid_cells * 17; }
+std::size_t gridMemoryBytes(const TopoMap& topo) {
+  return topo.stats().grid_cells * plan::kGridAStarBytesPerCell;
+}
 
 void writeTopoJson(const std::string& path, const TopoMap& topo) {
   const float voxel_m = topo.voxelSize();

@@ -6,7 +6,8 @@
 
 namespace strata::apps {
 
-/// Bytes grid A* keeps for the same bounds and robot (grid_astar.h: 1 + 16 bytes per cell).
+/// Bytes grid A* keeps for the same bounds and robot (grid_astar.h: kGridAStarBytesPerCell per
+/// cell).
 std::size_t gridMemoryBytes(const plan::TopoMap& topo);
 
 /// Atomically. Boxes and portal rectangles in metres (world frame); edges as portal pairs with

@@ -25,6 +25,10 @@
 
 namespace strata::plan {
 
+/// Bytes grid A* keeps per cell of the map's bounds: the traversability flag (1) and the search
+/// state (g 4, parent 8, two generation stamps 4 + 4).
+inline constexpr std::size_t kGridAStarBytesPerCell = 21;
+
 struct GridBuildStats {
   double build_ms = 0.0;  // the last grid built (sphere tests of every cell)
   std::size_t cells = 0;  // of that grid
@@ -39,7 +43,7 @@ class GridAStarPlanner final : public Planner {
 
   PlanResult plan(const PlanRequest& request) override;
   std::string name() const override { return "grid"; }
-  /// Every cached grid (1 byte per cell) plus the search's scratch (16 bytes per cell).
+  /// Every cached grid plus the search's scratch: kGridAStarBytesPerCell per cell.
   std::size_t memoryBytes() const override;
 
   /// The grid for (radius, policy), built now unless cached. InputError for a bad radius.
