@@ -5,6 +5,7 @@
 #include "all_command.h"
 #include "diff_command.h"
 #include "esdf_command.h"
+#include "plan_command.h"
 #include "frontend_command.h"
 #include "fuse_command.h"
 #include "lcm_command.h"
@@ -52,6 +53,8 @@ int main(int argc, char** argv) {
   CLI::App* objects = strata::bench::addObjectsCommand(app, objects_options);
   strata::bench::PlanCollisionBenchOptions plan_collision_options;
   CLI::App* plan_collision = strata::bench::addPlanCollisionCommand(app, plan_collision_options);
+  strata::bench::PlanBenchOptions plan_options;
+  CLI::App* plan = strata::bench::addPlanCommand(app, plan_options);
   strata::bench::AllBenchOptions all_options;
   CLI::App* all = strata::bench::addAllCommand(app, all_options);
   try {
@@ -62,6 +65,7 @@ int main(int argc, char** argv) {
   if (fuse->parsed()) return strata::bench::runFuseBench(fuse_options);
   if (sim->parsed()) return strata::bench::runSimBench(sim_options);
   if (esdf->parsed()) return strata::bench::runEsdfBench(esdf_options);
+  if (plan->parsed()) return strata::bench::runPlanBench(plan_options);
   if (diff->parsed()) return strata::bench::runDiffBench(diff_options);
   if (select_cmd->parsed()) return strata::bench::runSelectBench(select_options);
   if (occupancy->parsed()) return strata::bench::runOccupancyBench(occupancy_options);

@@ -152,9 +152,23 @@ EsdfSlice renderEsdfSlice(const EsdfMap& map, const EsdfSliceOptions& options) {
   drawText(out.image, slice_detail::kPad, slice_detail::kPad, title, slice_detail::kTextScale,
            {{20, 20, 20}});
   drawMap(out.image, layout, grid, out.stats);
+  out.stats.map_x_px = layout.map_x;
+  out.stats.map_y_px = layout.map_y;
+  out.stats.grid_x0_voxels = grid.x0;
+  out.stats.grid_y0_voxels = grid.y0;
   slice_detail::drawColourBar(out.image, layout, out.stats.colour_min_m, out.stats.colour_max_m);
   slice_detail::drawLegend(out.image, layout);
   return out;
+}
+
+Eigen::Vector2f slicePixel(const EsdfSliceStats& s, float voxel_size_m, float x_m, float y_m) {
+  const float ppv = static_cast<float>(s.pixels_per_voxel);
+  const float col = (x_m / voxel_size_m - static_cast<float>(s.grid_x0_voxels)) * ppv;
+  const float row = (static_cast<float>(s.height_voxels) -
+                     (y_m / voxel_size_m - static_cast<float>(s.grid_y0_voxels))) *
+                    ppv;
+  return Eigen::Vector2f(static_cast<float>(s.map_x_px) + col,
+                         static_cast<float>(s.map_y_px) + row);
 }
 
 EsdfSliceStats writeEsdfSlicePng(const std::string& path, const EsdfMap& map,

@@ -36,7 +36,16 @@ struct EsdfSliceStats {
   float max_distance_m = 0.0f;
   float colour_min_m = 0.0f;  // the colour range (see EsdfSliceOptions::max_distance_m)
   float colour_max_m = 0.0f;
+  // Where the map lies in the picture, for drawing over it: the pixel of the map's top-left
+  // corner, and the global voxel index (x, y) of the grid's lower-left voxel.
+  int map_x_px = 0;
+  int map_y_px = 0;
+  int grid_x0_voxels = 0;
+  int grid_y0_voxels = 0;
 };
+
+/// The picture's pixel (x right, y down; fractional) of world point (x, y) on a slice.
+Eigen::Vector2f slicePixel(const EsdfSliceStats& stats, float voxel_size_m, float x_m, float y_m);
 
 struct EsdfSlice {
   ColorImage image;

@@ -14,8 +14,10 @@
 #include "cli/mesh_command.h"
 #include "cli/objects_command.h"
 #include "cli/odometry_command.h"
+#include "cli/plan_command.h"
 #include "cli/select_command.h"
 #include "cli/sim_command.h"
+#include "cli/topo_command.h"
 #include "core/error.h"
 #include "vk/vk.h"
 
@@ -37,7 +39,7 @@ int runDefault() {
   std::printf(
       "strata: no command given; running the multi-session demo on the shipped room "
       "(see `strata --help` for fuse, sim, demo, diff, drift, mesh, esdf, select, eval-trajectory, "
-      "map, odometry, align, objects, devices)\n");
+      "map, odometry, align, objects, plan, topo, devices)\n");
   return strata::apps::runDemo(strata::apps::DemoOptions{});
 }
 
@@ -72,6 +74,10 @@ int main(int argc, char** argv) {
   CLI::App* align = strata::apps::addAlignCommand(app, align_options);
   strata::apps::ObjectsOptions objects_options;
   CLI::App* objects = strata::apps::addObjectsCommand(app, objects_options);
+  strata::apps::PlanOptions plan_options;
+  CLI::App* plan = strata::apps::addPlanCommand(app, plan_options);
+  strata::apps::TopoOptions topo_options;
+  CLI::App* topo = strata::apps::addTopoCommand(app, topo_options);
   CLI::App* devices = app.add_subcommand("devices", "List the Vulkan devices");
   try {
     app.parse(argc, argv);
@@ -91,6 +97,8 @@ int main(int argc, char** argv) {
   if (odometry->parsed()) return strata::apps::runOdometry(odometry_options);
   if (align->parsed()) return strata::apps::runAlign(align_options);
   if (objects->parsed()) return strata::apps::runObjects(objects_options);
+  if (plan->parsed()) return strata::apps::runPlan(plan_options);
+  if (topo->parsed()) return strata::apps::runTopo(topo_options);
   if (devices->parsed()) return listDevices();
   return runDefault();
 }
