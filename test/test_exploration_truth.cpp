@@ -130,6 +130,36 @@ TEST(ExplorationTruth, ClearanceIsTheDistanceToTheNearestSurface) {
   EXPECT_TRUE(std::isinf(minClearanceAlong(roomScene(), {})));
 }
 
+TEST(ExplorationTruth, TheDeadEndCorridorIsReachedThroughTheJunctionOnly) {
+  const sim::World world = sim::World::load(sim::findWorld("deadend"));
+  const auto scene = world.buildScene(0);
+  const double voxel_m = 0.1;
+  // The scenario's start, at the junction (worlds/deadend.yaml).
+  const ReachableSpace space =
+      computeReachableSpace(*scene, world.bounds(), {9.0, 4.0, 1.2}, voxel_m);
+  // The bounds hold the air outside the building beside the corridor: free but unreachable.
+  EXPECT_GT(space.free_count, space.reachable_count + 200000);
+  std::size_t corridor = 0, behind_partition = 0;
+  bool end_reached = false;
+  for (int z = 0; z < space.dims.z(); ++z) {
+    for (int y = 0; y < space.dims.y(); ++y) {
+      for (int x = 0; x < space.dims.x(); ++x) {
+        if (!space.isReachable(x, y, z)) continue;
+        const Eigen::Vector3d c = space.center(x, y, z);
+        corridor += c.x() > 10.1 ? 1 : 0;
+        behind_partition += c.x() < 7.5 ? 1 : 0;
+        end_reached = end_reached || c.x() > 31.0;
+      }
+    }
+  }
+  const double voxel_m3 = std::pow(voxel_m, 3);
+  // Corridor 22 x 2 x 2.5 m less half a voxel on every side and the shelf at its end.
+  EXPECT_NEAR(corridor * voxel_m3, 21.9 * 1.9 * 2.4 - 1.0, 1.5);
+  EXPECT_TRUE(end_reached);
+  // Most of the hall lies behind the partition, more than the corridor holds.
+  EXPECT_GT(behind_partition, corridor);
+}
+
 TEST(ExplorationTruth, BadInputIsAnInputError) {
   const Eigen::AlignedBox3d bounds = room().bounds();
   EXPECT_THROW(computeReachableSpace(roomScene(), bounds, kStart_W, 0.0), InputError);
