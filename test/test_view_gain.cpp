@@ -82,6 +82,26 @@ TEST(ViewGain, EmptyMapSeesTheWholeFan) {
   }
 }
 
+TEST(ViewGain, RaysReachTheirRange) {
+  // Observed free space within 2 m of the position, unknown beyond: each bin gains the fan's
+  // volume between 2 m and max_range (up to the voxels on the sphere).
+  const Eigen::Vector3f p(0.31f, -0.22f, 1.07f);
+  TsdfMap map(mapConfig());
+  fillBox(map, p.array() - 2.2f, p.array() + 2.2f, [&](const Eigen::Vector3f& c) {
+    TsdfVoxel voxel;
+    voxel.tsdf_m = 0.3f;
+    voxel.weight = (c - p).norm() < 2.0f ? 1.0f : 0.0f;
+    return voxel;
+  });
+  ViewGainConfig config;
+  const std::vector<ViewGain> reference = viewGainReference(map, config, {p});
+  expectEqualGains(onDevice(map, config, {p}), reference);
+  ViewGainConfig beyond = config;
+  beyond.min_range_m = 2.0f;
+  const double bin_m3 = fanVolume_m3(beyond, kTwoPi / config.yaw_bins);
+  for (float g : reference[0].bin_gain_m3) EXPECT_NEAR(g, bin_m3, 0.03 * bin_m3);
+}
+
 /// A wall at x = 2 observed from the side x < 2; everything at x < -0.5 unobserved.
 TsdfMap wallMap() {
   TsdfMap map(mapConfig());
@@ -164,7 +184,9 @@ TEST(ViewGain, CoarseStepsAndOtherFansStillAgree) {
   config.step_voxels = 2.5f;
   config.min_range_m = 0.0f;
   config.max_range_m = 3.33f;
-  const std::vector<Eigen::Vector3f> positions = {{1.05f, 2.0f, 1.0f}, {-0.95f, -1.0f, 0.5f}};
+  // The far position makes the batch's block box too large for one table: two chunks.
+  const std::vector<Eigen::Vector3f> positions = {
+      {1.05f, 2.0f, 1.0f}, {-0.95f, -1.0f, 0.5f}, {800.0f, -700.0f, 40.0f}, {2.0f, 1.0f, 1.0f}};
   expectEqualGains(onDevice(map, config, positions), viewGainReference(map, config, positions));
 }
 

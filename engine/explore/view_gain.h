@@ -20,7 +20,7 @@
 // results are equal, not merely close; tests hold them to each other.
 // Frames: world (z up); yaw counter-clockwise about +z from +x, radians.
 // Errors: InputError for a bad config (naming the field), a position that is not finite or lies
-// beyond 4e6 voxels of the origin, or rays longer than 1e6 voxels.
+// beyond 4e6 voxels of the origin, or rays longer than 512 voxels (max_range_m / voxel size).
 // Thread safety: ViewGainKernel is not thread safe; the reference and gainAtYaw are.
 #include <Eigen/Core>
 #include <cstdint>
@@ -66,7 +66,9 @@ std::vector<ViewGain> viewGainReference(const TsdfMap& map, const ViewGainConfig
 /// bins partly inside count in proportion). Any finite yaw; bins.size() must be config.yaw_bins.
 float gainAtYaw(const ViewGain& gain, const ViewGainConfig& config, float yaw_rad);
 
-/// Device kernel: every position of the batch in one dispatch (one invocation per ray).
+/// Device kernel: a table of the map's blocks around the batch (one pass over the hash table),
+/// then every position of the batch in one dispatch (one invocation per ray); batches spread so
+/// wide that the table would exceed 4M blocks go in several such pairs.
 class ViewGainKernel {
  public:
   /// Validates the config (InputError).

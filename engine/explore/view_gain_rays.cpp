@@ -10,8 +10,6 @@ namespace strata::explore::internal {
 namespace {
 
 constexpr double kTwoPi = 2.0 * M_PI;
-constexpr double kMaxRayVoxels = 1.0e6;
-constexpr int kMaxSteps = 65536;
 // The largest step volume is this many units: quantisation costs ~1e-7 of it per sample.
 constexpr double kUnitsOfLargestStep = double(1 << 24);
 
@@ -23,10 +21,10 @@ Eigen::Vector4i quantisedDirection(double yaw_rad, double elevation_rad, int row
                          static_cast<int>(std::llround(std::sin(elevation_rad) * scale)), row);
 }
 
-std::string tooLong(const ViewGainConfig& config, float voxel_size_m, const char* what) {
+std::string tooLong(const ViewGainConfig& config, float voxel_size_m) {
   std::ostringstream out;
-  out << "ViewGainConfig: max_range_m " << config.max_range_m << " with step_voxels "
-      << config.step_voxels << " on " << voxel_size_m << " m voxels gives " << what;
+  out << "ViewGainConfig.max_range_m: " << config.max_range_m << " m on " << voxel_size_m
+      << " m voxels gives rays over " << kMaxRayVoxels << " voxels long";
   return out.str();
 }
 
@@ -38,12 +36,11 @@ ViewGainRays makeViewGainRays(const ViewGainConfig& config, float voxel_size_m) 
     throw InputError("view gain: the map's voxel size must be positive");
   }
   if (config.max_range_m / voxel_size_m > kMaxRayVoxels) {
-    throw InputError(tooLong(config, voxel_size_m, "rays over 1e6 voxels long"));
+    throw InputError(tooLong(config, voxel_size_m));
   }
   const double step_m = double(config.step_voxels) * voxel_size_m;
   const double span_m = double(config.max_range_m) - config.min_range_m;
   const double steps = std::max(1.0, std::ceil(span_m / step_m - 1e-9));
-  if (steps > kMaxSteps) throw InputError(tooLong(config, voxel_size_m, "over 65536 steps"));
 
   ViewGainRays rays;
   rays.voxel_size_m = voxel_size_m;
@@ -106,6 +103,23 @@ FixedPosition fixedPosition(const Eigen::Vector3f& p_W, float voxel_size_m) {
     out.frac[a] = static_cast<int>(q - (voxel << kFracBits));
   }
   return out;
+}
+
+BlockBox fanBlocks(const FixedPosition& origin, const ViewGainRays& rays) {
+  std::int32_t t_max = 0;
+  for (std::int32_t t : rays.t_q) t_max = std::max(t_max, t);
+  Eigen::Vector3i dir_max = Eigen::Vector3i::Zero();
+  for (const Eigen::Vector4i& d : rays.dir_q) dir_max = dir_max.cwiseMax(d.head<3>().cwiseAbs());
+  BlockBox box;
+  for (int a = 0; a < 3; ++a) {
+    // |offset| <= reach in 1/256 voxel; the fraction adds less than one voxel.
+    const std::int32_t reach = ((dir_max[a] * t_max) >> kDirBits) + 1;
+    const int lo = origin.voxel[a] + ((origin.frac[a] - reach) >> kFracBits);
+    const int hi = origin.voxel[a] + ((origin.frac[a] + reach) >> kFracBits);
+    box.lo[a] = lo >> 3;  // floor division by the block edge
+    box.hi[a] = hi >> 3;
+  }
+  return box;
 }
 
 ViewGain finishViewGain(const std::uint64_t* bin_units, const ViewGainRays& rays,

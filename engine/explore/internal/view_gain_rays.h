@@ -3,9 +3,10 @@
 // voxels and add the same integers (results agree bit for bit). Internal to strata::explore.
 //
 // Positions are in 1/256 voxel units: a position is its voxel plus a fraction in [0, 256). A ray's
-// direction is quantised to 1/32768; step k's distance t_k to 1/256 voxel. The offset of step k is
-// (dir_q * t_q[k]) >> 15 (64-bit product, arithmetic shift = floor), the voxel of step k is
-// origin_voxel + ((origin_frac + offset) >> 8). Volumes are integers of `unit_m3`.
+// direction is quantised to 1/8192; step k's distance t_k to 1/256 voxel. The offset of step k is
+// (dir_q * t_q[k]) >> 13 (32-bit product: rays of at most kMaxRayVoxels keep it below 2^30;
+// arithmetic shift = floor), the voxel of step k is origin_voxel + ((origin_frac + offset) >> 8).
+// Volumes are integers of `unit_m3`.
 #include <Eigen/Core>
 #include <cstdint>
 #include <vector>
@@ -15,9 +16,12 @@
 namespace strata::explore::internal {
 
 inline constexpr int kFracBits = 8;  // position: 1/256 voxel
-inline constexpr int kDirBits = 15;  // direction: 1/32768
+inline constexpr int kDirBits = 13;  // direction: 1/8192
 /// |position / voxel| must stay below this (positions outside are an InputError).
 inline constexpr double kMaxVoxelCoord = 4.0e6;
+/// Rays reach at most this many voxels (max_range_m / voxel_size_m): the product above fits 32
+/// bits, and the device's block table around one position stays small.
+inline constexpr double kMaxRayVoxels = 512.0;
 
 struct ViewGainRays {
   float voxel_size_m = 0.0f;
@@ -33,8 +37,8 @@ struct ViewGainRays {
   std::vector<std::uint32_t> weight;
 };
 
-/// The fan of `config` on a map of `voxel_size_m`. InputError when the rays would be too long in
-/// voxels for the fixed-point march (max_range_m / voxel_size_m > 1e6) or too many steps (> 65536).
+/// The fan of `config` on a map of `voxel_size_m`. InputError when the rays would be longer than
+/// kMaxRayVoxels voxels.
 ViewGainRays makeViewGainRays(const ViewGainConfig& config, float voxel_size_m);
 
 /// A position in fixed point: voxel and fraction (1/256). InputError for non-finite positions or
@@ -50,7 +54,7 @@ inline Eigen::Vector3i stepVoxel(const FixedPosition& origin, const Eigen::Vecto
                                  std::int32_t t_q) {
   Eigen::Vector3i v;
   for (int a = 0; a < 3; ++a) {
-    const auto offset = static_cast<std::int32_t>((std::int64_t{dir_q[a]} * t_q) >> kDirBits);
+    const std::int32_t offset = (dir_q[a] * t_q) >> kDirBits;
     v[a] = origin.voxel[a] + ((origin.frac[a] + offset) >> kFracBits);
   }
   return v;
@@ -60,6 +64,16 @@ inline Eigen::Vector3i stepVoxel(const FixedPosition& origin, const Eigen::Vecto
 inline bool stopsRay(float tsdf_m, float weight, float min_weight, float occupied_below_m) {
   return weight >= min_weight && tsdf_m < occupied_below_m;
 }
+
+/// The blocks every sample of the fan from one position lies in: [lo, hi] per axis, inclusive.
+struct BlockBox {
+  Eigen::Vector3i lo, hi;
+  std::int64_t blocks() const {
+    return (hi - lo + Eigen::Vector3i::Ones()).cast<std::int64_t>().prod();
+  }
+  BlockBox merged(const BlockBox& o) const { return {lo.cwiseMin(o.lo), hi.cwiseMax(o.hi)}; }
+};
+BlockBox fanBlocks(const FixedPosition& origin, const ViewGainRays& rays);
 
 /// The ViewGain of one position from its per-bin integer volumes (same code for both paths).
 ViewGain finishViewGain(const std::uint64_t* bin_units, const ViewGainRays& rays,
