@@ -5,6 +5,7 @@
 #include "all_command.h"
 #include "diff_command.h"
 #include "esdf_command.h"
+#include "explore_gain_command.h"
 #include "plan_command.h"
 #include "frontend_command.h"
 #include "fuse_command.h"
@@ -33,6 +34,8 @@ int main(int argc, char** argv) {
   CLI::App* diff = strata::bench::addDiffCommand(app, diff_options);
   strata::bench::SelectBenchOptions select_options;
   CLI::App* select_cmd = strata::bench::addSelectCommand(app, select_options);
+  strata::bench::ExploreGainBenchOptions explore_gain_options;
+  CLI::App* explore_gain = strata::bench::addExploreGainCommand(app, explore_gain_options);
   strata::bench::OccupancyBenchOptions occupancy_options;
   CLI::App* occupancy = strata::bench::addOccupancyCommand(app, occupancy_options);
   strata::bench::LcmBenchOptions lcm_options;
@@ -68,6 +71,7 @@ int main(int argc, char** argv) {
   if (plan->parsed()) return strata::bench::runPlanBench(plan_options);
   if (diff->parsed()) return strata::bench::runDiffBench(diff_options);
   if (select_cmd->parsed()) return strata::bench::runSelectBench(select_options);
+  if (explore_gain->parsed()) return strata::bench::runExploreGainBench(explore_gain_options);
   if (occupancy->parsed()) return strata::bench::runOccupancyBench(occupancy_options);
   if (lcm->parsed()) return strata::bench::runLcmBench(lcm_options);
   if (soak->parsed()) return strata::bench::runSoakBench(soak_options);

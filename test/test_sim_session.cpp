@@ -39,7 +39,7 @@ SimSessionConfig smallConfig(int frames) {
 }
 
 TEST(SimSession, PathsStayClearOfEverySurfaceInEveryShippedWorld) {
-  for (const std::string name : {"room", "office", "warehouse"}) {
+  for (const std::string name : {"room", "office", "warehouse", "deadend"}) {
     const auto world = loadShipped(name);
     for (int s = 0; s < world->sessionCount(); ++s) {
       const SimSessionDataset session(world, s, smallConfig(0));
@@ -56,7 +56,7 @@ TEST(SimSession, PathsStayClearOfEverySurfaceInEveryShippedWorld) {
 TEST(SimSession, ViewsTurnAtAHandHeldRateInEveryShippedWorld) {
   // A hand-held camera turns at tens of degrees per second; the office's paths once flipped by
   // up to 180 degrees in milliseconds where the look-at target switched sides of the path.
-  for (const std::string name : {"room", "office", "warehouse"}) {
+  for (const std::string name : {"room", "office", "warehouse", "deadend"}) {
     const auto world = loadShipped(name);
     for (int s = 0; s < world->sessionCount(); ++s) {
       const SimSessionDataset session(world, s, smallConfig(0));

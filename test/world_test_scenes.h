@@ -7,7 +7,9 @@
 
 namespace strata::sim::test {
 
-inline constexpr const char* kShippedWorlds[] = {"room", "office", "warehouse"};
+inline constexpr const char* kShippedWorlds[] = {"room", "office", "warehouse", "deadend"};
+/// Shipped worlds for mapping over several sessions (deadend is one session, for exploration).
+inline constexpr const char* kMultiSessionWorlds[] = {"room", "office", "warehouse"};
 
 /// One room 4 x 3 x 2.5 m with one box (0.6 x 0.4 x 0.5) at (2, 1.5), yaw `yaw` degrees.
 inline std::string boxRoomYaml(double yaw_deg) {
