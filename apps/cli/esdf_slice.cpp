@@ -148,6 +148,10 @@ EsdfSlice renderEsdfSlice(const EsdfMap& map, const EsdfSliceOptions& options) {
   const int ppv = out.stats.pixels_per_voxel;
   const std::string title = options.title.empty() ? defaultTitle(map, options.z_m) : options.title;
   const Layout layout = slice_detail::layoutSlice(grid.nx * ppv, grid.ny * ppv, title);
+  out.stats.origin_x_voxels = grid.x0;
+  out.stats.origin_y_voxels = grid.y0;
+  out.stats.map_x_px = layout.map_x;
+  out.stats.map_y_px = layout.map_y;
   out.image = ColorImage(layout.width, layout.height, 255);
   drawText(out.image, slice_detail::kPad, slice_detail::kPad, title, slice_detail::kTextScale,
            {{20, 20, 20}});
@@ -155,6 +159,15 @@ EsdfSlice renderEsdfSlice(const EsdfMap& map, const EsdfSliceOptions& options) {
   slice_detail::drawColourBar(out.image, layout, out.stats.colour_min_m, out.stats.colour_max_m);
   slice_detail::drawLegend(out.image, layout);
   return out;
+}
+
+Eigen::Vector2f slicePixel(const EsdfSliceStats& stats, float voxel_size_m, float x_m, float y_m) {
+  const float ppv = static_cast<float>(stats.pixels_per_voxel);
+  const float gx = x_m / voxel_size_m - static_cast<float>(stats.origin_x_voxels);
+  const float gy = y_m / voxel_size_m - static_cast<float>(stats.origin_y_voxels);
+  return {
+      static_cast<float>(stats.map_x_px) + gx * ppv,
+      static_cast<float>(stats.map_y_px) + (static_cast<float>(stats.height_voxels) - gy) * ppv};
 }
 
 EsdfSliceStats writeEsdfSlicePng(const std::string& path, const EsdfMap& map,

@@ -3,6 +3,7 @@
 // (dark purple at the lowest distance through teal to yellow at the colour range's top), unknown
 // voxels hatched grey, unallocated space flat light grey, a colour bar with tick labels, a legend
 // and a title line (built-in 5x7 font). x runs right, y up; one voxel is a square of pixels.
+#include <Eigen/Core>
 #include <cstddef>
 #include <string>
 
@@ -36,7 +37,14 @@ struct EsdfSliceStats {
   float max_distance_m = 0.0f;
   float colour_min_m = 0.0f;  // the colour range (see EsdfSliceOptions::max_distance_m)
   float colour_max_m = 0.0f;
+  /// Where the map lies in the picture, for drawing over it: the global voxel index (x, y) of
+  /// the grid's lower-left voxel and the picture's pixel of the map's top-left corner.
+  int origin_x_voxels = 0, origin_y_voxels = 0;
+  int map_x_px = 0, map_y_px = 0;
 };
+
+/// The pixel (x right, y down) of world point (x, y) in a slice rendered with `stats`.
+Eigen::Vector2f slicePixel(const EsdfSliceStats& stats, float voxel_size_m, float x_m, float y_m);
 
 struct EsdfSlice {
   ColorImage image;

@@ -9,6 +9,7 @@
 #include "cli/drift_command.h"
 #include "cli/esdf_command.h"
 #include "cli/eval_trajectory_command.h"
+#include "cli/explore_command.h"
 #include "cli/fuse_command.h"
 #include "cli/map_command.h"
 #include "cli/mesh_command.h"
@@ -72,6 +73,8 @@ int main(int argc, char** argv) {
   CLI::App* align = strata::apps::addAlignCommand(app, align_options);
   strata::apps::ObjectsOptions objects_options;
   CLI::App* objects = strata::apps::addObjectsCommand(app, objects_options);
+  strata::apps::ExploreOptions explore_options;
+  CLI::App* explore = strata::apps::addExploreCommand(app, explore_options);
   CLI::App* devices = app.add_subcommand("devices", "List the Vulkan devices");
   try {
     app.parse(argc, argv);
@@ -91,6 +94,7 @@ int main(int argc, char** argv) {
   if (odometry->parsed()) return strata::apps::runOdometry(odometry_options);
   if (align->parsed()) return strata::apps::runAlign(align_options);
   if (objects->parsed()) return strata::apps::runObjects(objects_options);
+  if (explore->parsed()) return strata::apps::runExplore(explore_options);
   if (devices->parsed()) return listDevices();
   return runDefault();
 }
