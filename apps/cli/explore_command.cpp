@@ -75,6 +75,7 @@ explore::ExplorationResult runOne(const std::string& name, const ExploreOptions&
   const fs::path dir = fs::path(o.out_dir) / name;
   fs::create_directories(dir);
   writeExploreCurveCsv((dir / "curve.csv").string(), result);
+  writeExploreStepsCsv((dir / "steps.csv").string(), result);
   Mapper& mapper = loop.mapper();
   mapper.updateEsdf();
   writeExplorePathPng((dir / "path.png").string(), mapper.esdf(), result, start.z());

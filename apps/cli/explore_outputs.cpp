@@ -60,6 +60,19 @@ void writeExploreCurveCsv(const std::string& path, const explore::ExplorationRes
   writeText(path, s.str());
 }
 
+void writeExploreStepsCsv(const std::string& path, const explore::ExplorationResult& result) {
+  std::ostringstream s;
+  s << "sim_time_s,mode,best_gain_m3,tree_nodes,gain_evaluations,compute_ms,esdf_ms\n";
+  char row[200];
+  for (const explore::StepRecord& r : result.steps) {
+    std::snprintf(row, sizeof(row), "%.3f,%s,%.4f,%zu,%zu,%.3f,%.3f\n", r.sim_time_s,
+                  r.mode.c_str(), static_cast<double>(r.best_gain_m3), r.tree_nodes,
+                  r.gain_evaluations, r.compute_ms, r.esdf_ms);
+    s << row;
+  }
+  writeText(path, s.str());
+}
+
 StepTimes stepTimes(const explore::ExplorationResult& result) {
   std::vector<double> ms;
   for (const explore::StepRecord& s : result.steps) ms.push_back(s.compute_ms);

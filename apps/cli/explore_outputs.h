@@ -11,6 +11,10 @@ namespace strata::apps {
 /// sim_time_s, explored_fraction, path_length_m, compute_ms (one row per curve point).
 void writeExploreCurveCsv(const std::string& path, const explore::ExplorationResult& result);
 
+/// One row per planning step: sim_time_s, mode, best_gain_m3, tree_nodes, gain_evaluations,
+/// compute_ms, esdf_ms.
+void writeExploreStepsCsv(const std::string& path, const explore::ExplorationResult& result);
+
 /// Median and 95th percentile of the planning steps' compute times (ms); 0 without steps.
 struct StepTimes {
   double median_ms = 0.0;

@@ -36,7 +36,7 @@ struct ExplorationConfig {
   RobotConfig robot;
   /// Added to the robot's radius in the planners' collision checks (metres): the ESDF knows
   /// obstacles to the voxel centre, the true surface can be half a voxel diagonal nearer.
-  float collision_margin_m = 0.1f;
+  float collision_margin_m = 0.05f;
   float voxel_size_m = 0.1f;
   /// The simulated camera: a smaller image renders and fuses faster; the field of view
   /// follows the gain model's (horizontal_fov_rad; the vertical one from the aspect ratio).

@@ -41,6 +41,7 @@ void HistoryConfig::validate() const {
     if (!finiteNonNegative(v)) throw InputError("history planner: gains and distances >= 0");
   }
   if (distance_offset_m <= 0.0f) throw InputError("history distance_offset_m must be > 0");
+  if (done_steps < 1) throw InputError("history done_steps must be >= 1");
   if (reevaluate_batch < 1) throw InputError("history reevaluate_batch must be >= 1");
   if (shortcut_count < 0) throw InputError("history shortcut_count must be >= 0");
 }
@@ -219,13 +220,16 @@ ExplorationStep HistoryPlanner::plan(const ExplorationState& state) {
       // Turn to the cached view's best yaw on the way (the last waypoint's yaw).
       for (Waypoint& w : step.path) w.yaw_rad = cache_[target].yaw_rad;
       step.mode = "global";
+      steps_without_gain_ = 0;
       return step;
     }
-    if (step.best_gain_m3 < config_.done_gain_m3) {
-      step.finished = best > 0;  // an empty tree is transient: hover and ask again
-      return step;
+    if (step.best_gain_m3 < config_.done_gain_m3 && best > 0) {
+      // An empty tree is transient (hover and ask again); a tree without gain counts.
+      step.finished = ++steps_without_gain_ >= config_.done_steps;
+      if (step.finished) return step;
     }
   }
+  if (step.best_gain_m3 >= config_.done_gain_m3) steps_without_gain_ = 0;
   if (best == 0) return step;  // no free edge: hover, ask again
   const TreeNode& first = tree.nodes()[branch.front()];
   const int first_node = graph_.addNode(first.position_W);

@@ -32,6 +32,8 @@ struct HistoryConfig {
   float prune_gain_m3 = 0.5f;
   /// No local view and no cached view above this (m^3): exploration is over.
   float done_gain_m3 = 0.2f;
+  /// Steps in a row without local or cached gain that end the run.
+  int done_steps = 3;
   /// Score of a cached view = gain / (graph distance + this) (metres).
   float distance_offset_m = 1.0f;
   /// Cached views re-evaluated per gain call.
@@ -81,6 +83,7 @@ class HistoryPlanner final : public ExplorationPlanner {
   int target_node_ = -1;          // where the previous step sent it
   std::vector<int> global_path_;  // remaining nodes of a path to a cached view
   std::vector<Eigen::Vector3f> previous_branch_W_;
+  int steps_without_gain_ = 0;
 };
 
 }  // namespace strata::explore

@@ -1,5 +1,6 @@
 #include "explore/local_tree.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -8,16 +9,13 @@
 namespace strata::explore {
 namespace {
 
+using Candidate = TreeCandidate;
+
 Eigen::Vector3f sampleBox(const Eigen::AlignedBox3f& box, std::mt19937_64& rng) {
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
   const Eigen::Vector3f t(u(rng), u(rng), u(rng));
   return box.min() + t.cwiseProduct(box.sizes());
 }
-
-struct Candidate {
-  Eigen::Vector3f position_W;
-  int parent;
-};
 
 /// A sample pulled towards its nearest node to at most max_edge; nullopt-like parent -1 when it
 /// lands too close to that node.
@@ -30,6 +28,24 @@ Candidate steer(const Eigen::Vector3f& sample_W, int parent, const Eigen::Vector
   return {from_W + delta, parent};
 }
 
+/// Moves candidates that lie near an obstacle up the ESDF gradient (one checker call).
+void pushFromObstacles(std::vector<Candidate>& candidates, plan::CollisionChecker& checker,
+                       float radius_m, const LocalTreeConfig& config) {
+  if (config.push_clearance_m <= 0.0f || candidates.empty()) return;
+  std::vector<Eigen::Vector3f> points;
+  for (const Candidate& c : candidates) points.push_back(c.position_W);
+  const std::vector<EsdfSample> samples = checker.sample(points);
+  const float want = radius_m + config.push_clearance_m;
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    const EsdfSample& s = samples[i];
+    if (s.status != EsdfStatus::kKnown || s.distance_m >= want) continue;
+    const float g = s.gradient.norm();
+    if (!(g > 1e-3f)) continue;
+    const float step = std::min(config.push_max_m, want - s.distance_m);
+    candidates[i].position_W += s.gradient * (step / g);
+  }
+}
+
 }  // namespace
 
 void LocalTreeConfig::validate() const {
@@ -39,6 +55,9 @@ void LocalTreeConfig::validate() const {
   }
   if (!(half_extent_m.minCoeff() > 0.0f) || !half_extent_m.allFinite()) {
     throw InputError("local tree half_extent_m must be positive");
+  }
+  if (!(push_clearance_m >= 0.0f) || !(push_max_m >= 0.0f)) {
+    throw InputError("local tree push_clearance_m and push_max_m must be >= 0");
   }
   if (batch < 1 || max_batches < 1) throw InputError("local tree batch and max_batches >= 1");
   if (!(lambda_per_m >= 0.0f) || !std::isfinite(lambda_per_m)) {
@@ -56,6 +75,18 @@ LocalTree::LocalTree(const Eigen::Vector3f& root_W) {
   TreeNode root;
   root.position_W = root_W;
   nodes_.push_back(root);
+}
+
+EsdfSegment LocalTree::checkedPart(const Candidate& c, float radius_m) const {
+  const Eigen::Vector3f from = nodes_[c.parent].position_W;
+  if (c.parent != 0) return {from, c.position_W};
+  // NOTE: edges from the root are checked from one radius out: the robot is already in the
+  // root's sphere, and a surface observed there since (noise, a newly seen corner) must not
+  // keep it from moving away from it.
+  const Eigen::Vector3f delta = c.position_W - from;
+  const float length = delta.norm();
+  const float skip = std::min(radius_m, 0.5f * length);
+  return {from + delta * (skip / std::max(length, 1e-6f)), c.position_W};
 }
 
 int LocalTree::nearest(const Eigen::Vector3f& p_W) const {
@@ -107,8 +138,9 @@ void LocalTree::grow(int target_nodes, const Eigen::AlignedBox3f& box_W,
       const Candidate c = steer(sample, parent, nodes_[parent].position_W, config);
       if (c.parent < 0) continue;
       candidates.push_back(c);
-      segments.push_back({nodes_[c.parent].position_W, c.position_W});
     }
+    pushFromObstacles(candidates, checker, radius_m, config);
+    for (const Candidate& c : candidates) segments.push_back(checkedPart(c, radius_m));
     if (segments.empty()) continue;
     const std::vector<std::uint8_t> free =
         checker.segmentsFree(segments, radius_m, UnknownPolicy::kOccupied);

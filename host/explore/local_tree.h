@@ -2,10 +2,12 @@
 // The local rapidly-exploring random tree both exploration planners grow at each step (Bircher
 // et al. 2016, receding-horizon next-best-view): from the robot's position, through known free
 // space only (capsule checks with UnknownPolicy::kOccupied, a batch of candidate edges per
-// checker call), inside a box around the robot. Each node carries a view (position, yaw) and
-// its gain; the score of a node is the gain accumulated along its branch, each view discounted
-// by exp(-lambda * cost) with cost the branch length from the root (Eq. (1) of the NBVP paper).
-// Frames: world, metres. Thread safety: not thread safe (the checker and the rng are shared).
+// checker call; edges from the root from one radius out, so that the robot can always move away
+// from a surface observed next to it), inside a box around the robot. Each node carries a view
+// (position, yaw) and its gain; the score of a node is the gain accumulated along its branch, each
+// view discounted by exp(-lambda * cost) with cost the branch length from the root (Eq. (1) of the
+// NBVP paper). Frames: world, metres. Thread safety: not thread safe (the checker and the rng are
+// shared).
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <random>
@@ -28,6 +30,11 @@ struct LocalTreeConfig {
   int batch = 24;
   /// Checker calls per growth at most (a cluttered spot may never reach `nodes`).
   int max_batches = 10;
+  /// Candidates closer than (check radius + this) to an obstacle are pushed up the ESDF gradient
+  /// to that distance (at most push_max_m): edges through doors and gaps stay near their middle,
+  /// where a capsule fits (metres; 0: off).
+  float push_clearance_m = 0.15f;
+  float push_max_m = 0.3f;
   /// Discount of a view's gain per metre of branch (1/m).
   float lambda_per_m = 0.5f;
 
@@ -42,6 +49,12 @@ struct TreeNode {
   float yaw_rad = 0.0f;
   float gain_m3 = 0.0f;   // of the node's own view
   float score_m3 = 0.0f;  // accumulated, discounted along the branch
+};
+
+/// A candidate node: its position and the node it would hang from.
+struct TreeCandidate {
+  Eigen::Vector3f position_W;
+  int parent;
 };
 
 class LocalTree {
@@ -68,7 +81,10 @@ class LocalTree {
   std::size_t size() const { return nodes_.size(); }
 
  private:
+  using Candidate = TreeCandidate;
   int nearest(const Eigen::Vector3f& p_W) const;
+  /// The part of a candidate edge that is checked (local_tree.cpp: edges from the root).
+  EsdfSegment checkedPart(const Candidate& c, float radius_m) const;
 
   std::vector<TreeNode> nodes_;
 };

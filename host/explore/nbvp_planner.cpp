@@ -9,6 +9,7 @@ namespace strata::explore {
 void NbvpConfig::validate() const {
   tree.validate();
   if (!(done_gain_m3 >= 0.0f)) throw InputError("nbvp done_gain_m3 must be >= 0");
+  if (done_steps < 1) throw InputError("nbvp done_steps must be >= 1");
   if (tolerance_nodes < tree.nodes) throw InputError("nbvp tolerance_nodes must be >= nodes");
 }
 
@@ -57,7 +58,9 @@ ExplorationStep NbvpPlanner::plan(const ExplorationState& state) {
   const int best = tree.best();
   previous_branch_W_.clear();
   if (best == 0) return step;  // no free edge at all: hover, the loop asks again
-  if (tree.nodes()[best].score_m3 < config_.done_gain_m3) {
+  const bool no_gain = tree.nodes()[best].score_m3 < config_.done_gain_m3;
+  steps_without_gain_ = no_gain ? steps_without_gain_ + 1 : 0;
+  if (steps_without_gain_ >= config_.done_steps) {
     step.finished = true;
     return step;
   }

@@ -4,7 +4,9 @@
 // yaw, scores branches by their discounted accumulated gain and flies only the first edge of the
 // best branch; the rest of that branch re-seeds the next step's tree, the planner's only memory.
 // When the best score stays below `done_gain_m3`, the tree grows on to `tolerance_nodes` over the
-// whole bounds; still nothing: exploration is over (the paper's termination rule).
+// whole bounds; still nothing, the robot takes the best branch's first edge anyway, and after
+// `done_steps` such steps in a row exploration is over (the paper's termination rule, made
+// patient so a momentary dead spot does not end the run).
 // Thread safety: not thread safe.
 #include <cstdint>
 #include <random>
@@ -20,6 +22,8 @@ struct NbvpConfig {
   float done_gain_m3 = 0.2f;
   /// Nodes the tree may grow to (over the whole bounds) before a step without gain ends the run.
   int tolerance_nodes = 120;
+  /// Steps in a row without gain that end the run.
+  int done_steps = 3;
   std::uint64_t seed = 1;
 
   /// Throws InputError naming the bad field.
@@ -39,6 +43,7 @@ class NbvpPlanner final : public ExplorationPlanner {
   NbvpConfig config_;
   std::mt19937_64 rng_;
   std::vector<Eigen::Vector3f> previous_branch_W_;
+  int steps_without_gain_ = 0;
 };
 
 }  // namespace strata::explore
