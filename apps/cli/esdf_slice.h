@@ -3,6 +3,7 @@
 // (dark purple at the lowest distance through teal to yellow at the colour range's top), unknown
 // voxels hatched grey, unallocated space flat light grey, a colour bar with tick labels, a legend
 // and a title line (built-in 5x7 font). x runs right, y up; one voxel is a square of pixels.
+#include <Eigen/Core>
 #include <cstddef>
 #include <string>
 

@@ -9,6 +9,7 @@
 #include "cli/drift_command.h"
 #include "cli/esdf_command.h"
 #include "cli/eval_trajectory_command.h"
+#include "cli/explore_command.h"
 #include "cli/fuse_command.h"
 #include "cli/map_command.h"
 #include "cli/mesh_command.h"
@@ -78,6 +79,8 @@ int main(int argc, char** argv) {
   CLI::App* plan = strata::apps::addPlanCommand(app, plan_options);
   strata::apps::TopoOptions topo_options;
   CLI::App* topo = strata::apps::addTopoCommand(app, topo_options);
+  strata::apps::ExploreOptions explore_options;
+  CLI::App* explore = strata::apps::addExploreCommand(app, explore_options);
   CLI::App* devices = app.add_subcommand("devices", "List the Vulkan devices");
   try {
     app.parse(argc, argv);
@@ -99,6 +102,7 @@ int main(int argc, char** argv) {
   if (objects->parsed()) return strata::apps::runObjects(objects_options);
   if (plan->parsed()) return strata::apps::runPlan(plan_options);
   if (topo->parsed()) return strata::apps::runTopo(topo_options);
+  if (explore->parsed()) return strata::apps::runExplore(explore_options);
   if (devices->parsed()) return listDevices();
   return runDefault();
 }

@@ -1,0 +1,107 @@
+#include "cli/explore_outputs.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "cli/esdf_slice.h"
+#include "core/atomic_file.h"
+#include "core/json_text.h"
+
+namespace strata::apps {
+namespace {
+
+void writeText(const std::string& path, const std::string& text) {
+  writeFileAtomically(path, std::vector<std::uint8_t>(text.begin(), text.end()));
+}
+
+double percentile(std::vector<double> values, double q) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const double pos = q * static_cast<double>(values.size() - 1);
+  const std::size_t lo = static_cast<std::size_t>(std::floor(pos));
+  const std::size_t hi = std::min(values.size() - 1, lo + 1);
+  return values[lo] + (pos - static_cast<double>(lo)) * (values[hi] - values[lo]);
+}
+
+std::string runJson(const explore::ExplorationResult& r) {
+  const StepTimes times = stepTimes(r);
+  const double t90 = timeToFraction(r, 0.9);
+  std::size_t global_steps = 0;
+  for (const auto& s : r.steps) global_steps += s.mode == "global" ? 1 : 0;
+  std::ostringstream j;
+  j << "{\"explored_fraction\": " << jsonNumber(r.explored_fraction)
+    << ", \"time_to_90_s\": " << (t90 < 0.0 ? "null" : jsonNumber(t90))
+    << ", \"collisions\": " << r.collisions
+    << ", \"min_clearance_m\": " << jsonNumber(r.min_clearance_m)
+    << ", \"path_length_m\": " << jsonNumber(r.path_length_m)
+    << ", \"step_ms_median\": " << jsonNumber(times.median_ms)
+    << ", \"step_ms_p95\": " << jsonNumber(times.p95_ms) << ", \"steps\": " << r.steps.size()
+    << ", \"global_steps\": " << global_steps << ", \"sim_time_s\": " << jsonNumber(r.sim_time_s)
+    << ", \"wall_s\": " << jsonNumber(r.wall_s)
+    << ", \"stop_reason\": " << jsonQuoted(r.stop_reason)
+    << ", \"reachable_voxels\": " << r.reachable_voxels
+    << ", \"start_clearing_fraction\": " << jsonNumber(r.start_clearing_fraction) << "}";
+  return j.str();
+}
+
+}  // namespace
+
+void writeExploreCurveCsv(const std::string& path, const explore::ExplorationResult& result) {
+  std::ostringstream s;
+  s << "sim_time_s,explored_fraction,path_length_m,compute_ms\n";
+  char row[160];
+  for (const explore::CurvePoint& p : result.curve) {
+    std::snprintf(row, sizeof(row), "%.3f,%.6f,%.3f,%.3f\n", p.sim_time_s, p.explored_fraction,
+                  p.path_length_m, p.compute_ms);
+    s << row;
+  }
+  writeText(path, s.str());
+}
+
+void writeExploreStepsCsv(const std::string& path, const explore::ExplorationResult& result) {
+  std::ostringstream s;
+  s << "sim_time_s,mode,best_gain_m3,tree_nodes,gain_evaluations,compute_ms,esdf_ms\n";
+  char row[200];
+  for (const explore::StepRecord& r : result.steps) {
+    std::snprintf(row, sizeof(row), "%.3f,%s,%.4f,%zu,%zu,%.3f,%.3f\n", r.sim_time_s,
+                  r.mode.c_str(), static_cast<double>(r.best_gain_m3), r.tree_nodes,
+                  r.gain_evaluations, r.compute_ms, r.esdf_ms);
+    s << row;
+  }
+  writeText(path, s.str());
+}
+
+StepTimes stepTimes(const explore::ExplorationResult& result) {
+  std::vector<double> ms;
+  for (const explore::StepRecord& s : result.steps) ms.push_back(s.compute_ms);
+  return {percentile(ms, 0.5), percentile(ms, 0.95)};
+}
+
+double timeToFraction(const explore::ExplorationResult& result, double fraction) {
+  for (const explore::CurvePoint& p : result.curve) {
+    if (p.explored_fraction >= fraction) return p.sim_time_s;
+  }
+  return -1.0;
+}
+
+void writeExploreReport(const std::string& path, const std::string& world,
+                        const std::vector<explore::ExplorationResult>& results,
+                        const explore::ExplorationConfig& config, const Eigen::Vector3f& start_W,
+                        unsigned long long seed) {
+  std::ostringstream j;
+  j << "{\n  \"world\": " << jsonQuoted(world) << ",\n  \"seed\": " << seed << ",\n  \"start\": ["
+    << jsonNumber(start_W.x()) << ", " << jsonNumber(start_W.y()) << ", " << jsonNumber(start_W.z())
+    << "],\n  \"voxel_size_m\": " << jsonNumber(config.voxel_size_m)
+    << ",\n  \"time_limit_s\": " << jsonNumber(config.time_limit_s) << ",\n  \"camera\": ["
+    << config.camera_width_px << ", " << config.camera_height_px << "],\n  \"planners\": {";
+  for (std::size_t i = 0; i < results.size(); ++i) {
+    j << (i ? ",\n    " : "\n    ") << jsonQuoted(results[i].planner) << ": "
+      << runJson(results[i]);
+  }
+  j << "\n  }\n}\n";
+  writeText(path, j.str());
+}
+
+}  // namespace strata::apps

@@ -1,0 +1,41 @@
+#pragma once
+// The files of `strata explore`: the curve as CSV, the report as JSON, the explored-share chart
+// and the top-down picture of the flown path over the final map's ESDF.
+#include <string>
+#include <vector>
+
+#include "explore/exploration_loop.h"
+
+namespace strata::apps {
+
+/// sim_time_s, explored_fraction, path_length_m, compute_ms (one row per curve point).
+void writeExploreCurveCsv(const std::string& path, const explore::ExplorationResult& result);
+
+/// One row per planning step: sim_time_s, mode, best_gain_m3, tree_nodes, gain_evaluations,
+/// compute_ms, esdf_ms.
+void writeExploreStepsCsv(const std::string& path, const explore::ExplorationResult& result);
+
+/// Median and 95th percentile of the planning steps' compute times (ms); 0 without steps.
+struct StepTimes {
+  double median_ms = 0.0;
+  double p95_ms = 0.0;
+};
+StepTimes stepTimes(const explore::ExplorationResult& result);
+/// The first curve time at which the explored share reaches `fraction`; negative: never.
+double timeToFraction(const explore::ExplorationResult& result, double fraction);
+
+/// {"world":..., "planners": {"history": {...}, ...}}.
+void writeExploreReport(const std::string& path, const std::string& world,
+                        const std::vector<explore::ExplorationResult>& results,
+                        const explore::ExplorationConfig& config, const Eigen::Vector3f& start_W,
+                        unsigned long long seed);
+
+/// Explored share vs simulated time, one line per run.
+void writeExploreCurvePng(const std::string& path, const std::string& world,
+                          const std::vector<explore::ExplorationResult>& results);
+
+/// The ESDF slice at the start's height with the flown path drawn over it.
+void writeExplorePathPng(const std::string& path, const EsdfMap& esdf,
+                         const explore::ExplorationResult& result, float z_m);
+
+}  // namespace strata::apps

@@ -1,0 +1,162 @@
+#include "explore/exploration_loop.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "core/error.h"
+#include "explore/internal/loop_impl.h"
+#include "sim/sensors/rgbd_camera.h"
+
+namespace strata::explore {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+std::int64_t ticksOf(double period_s, double step_s) {
+  return std::max<std::int64_t>(1, std::llround(period_s / step_s));
+}
+
+/// Contiguous stretches of samples closer to a surface than the radius.
+int countCollisions(const ExplorationTruth& truth, const std::vector<Eigen::Vector3f>& flown_W,
+                    float radius_m, float& min_clearance_m) {
+  int collisions = 0;
+  bool inside = false;
+  min_clearance_m = std::numeric_limits<float>::infinity();
+  for (const Eigen::Vector3f& p : flown_W) {
+    const float d = truth.minClearance({p});
+    min_clearance_m = std::min(min_clearance_m, d);
+    if (d < radius_m && !inside) ++collisions;
+    inside = d < radius_m;
+  }
+  return collisions;
+}
+
+}  // namespace
+
+void ExplorationLoop::fuseFrame(double sim_time_s, std::uint64_t index) {
+  const Eigen::Isometry3d T_W_C = cameraPose(impl_->follower.pose());
+  sim::SimulatedFrame frame =
+      impl_->camera.render(truth_.scene(), T_W_C, impl_->lighting, config_.seed * 1000003u + index);
+  const RgbdFrame rgbd =
+      sim::makeRgbdFrame(std::move(frame), T_W_C, sim_time_s, "explore-" + std::to_string(index));
+  mapper_->integrate(rgbd, impl_->camera.config().intrinsics);
+}
+
+ExplorationResult ExplorationLoop::run(ExplorationPlanner& planner,
+                                       const ExplorationProgress& progress) {
+  const Clock::time_point wall_start = Clock::now();
+  ExplorationResult result;
+  result.planner = planner.name();
+  result.reachable_voxels = truth_.reachableVoxels();
+  result.start_clearing_fraction =
+      truth_.exploredFraction(mapper_->download(), config_.gain.min_weight);
+
+  const double dt = config_.motion_step_s;
+  const std::int64_t frame_ticks = ticksOf(1.0 / config_.camera_rate_hz, dt);
+  const std::int64_t eval_ticks = ticksOf(config_.eval_period_s, dt);
+  const std::int64_t limit_ticks = ticksOf(config_.time_limit_s, dt);
+  PathFollower& follower = impl_->follower;
+  double last_plan_s = -1e9;
+  int idle_steps = 0;
+  std::size_t steps_at_last_point = 0;
+  std::uint64_t frames = 0;
+  result.flown_W.push_back(follower.pose().position_W);
+
+  ExplorationState state;
+  state.check_radius_m = config_.robot.radius_m + config_.collision_margin_m;
+  state.bounds_W = bounds_W_;
+  state.gain_config = config_.gain;
+  ViewGainKernel& kernel = impl_->gain;
+  Mapper& mapper = *mapper_;
+  state.gain = [&kernel, &mapper](const std::vector<Eigen::Vector3f>& positions) {
+    return kernel.run(mapper.deviceMap(), positions);
+  };
+
+  for (std::int64_t tick = 0;; ++tick) {
+    const double t = static_cast<double>(tick) * dt;
+    if (tick % frame_ticks == 0) fuseFrame(t, frames++);
+    if (tick % eval_ticks == 0 || tick >= limit_ticks) {
+      CurvePoint point;
+      point.sim_time_s = t;
+      point.explored_fraction = truth_.exploredFraction(mapper.download(), config_.gain.min_weight);
+      point.path_length_m = result.path_length_m;
+      double sum_ms = 0.0;
+      for (std::size_t i = steps_at_last_point; i < result.steps.size(); ++i) {
+        sum_ms += result.steps[i].compute_ms;
+      }
+      const std::size_t new_steps = result.steps.size() - steps_at_last_point;
+      point.compute_ms = new_steps > 0 ? sum_ms / static_cast<double>(new_steps) : 0.0;
+      steps_at_last_point = result.steps.size();
+      result.curve.push_back(point);
+      if (progress) progress(point, result.steps.empty() ? nullptr : &result.steps.back());
+      if (point.explored_fraction >= config_.target_fraction) {
+        result.stop_reason = "target";
+        break;
+      }
+    }
+    if (tick >= limit_ticks) {
+      result.stop_reason = "time limit";
+      break;
+    }
+    if (follower.atWaypoint() && (follower.done() || t - last_plan_s >= config_.replan_period_s)) {
+      StepRecord record;
+      record.sim_time_s = t;
+      const Clock::time_point esdf_start = Clock::now();
+      mapper.updateEsdf();
+      if (!impl_->checker) {
+        impl_->checker =
+            std::make_unique<plan::DeviceCollisionChecker>(context_, *mapper.deviceEsdf());
+      }
+      impl_->checker->setEsdf(*mapper.deviceEsdf());
+      record.esdf_ms = msSince(esdf_start);
+      state.sim_time_s = t;
+      state.pose = follower.pose();
+      state.checker = impl_->checker.get();
+      const Clock::time_point plan_start = Clock::now();
+      const ExplorationStep step = planner.plan(state);
+      record.compute_ms = msSince(plan_start);
+      record.mode = step.mode;
+      record.best_gain_m3 = step.best_gain_m3;
+      record.tree_nodes = step.tree_nodes;
+      record.gain_evaluations = step.gain_evaluations;
+      result.steps.push_back(record);
+      last_plan_s = t;
+      if (step.finished) {
+        result.stop_reason = "no gain";
+        break;
+      }
+      idle_steps = step.path.empty() ? idle_steps + 1 : 0;
+      if (idle_steps >= config_.max_idle_steps) {
+        result.stop_reason = "stuck";
+        break;
+      }
+      if (step.path.empty()) {
+        follower.hover(config_.replan_period_s);
+      } else {
+        follower.setPath(step.path);
+      }
+    }
+    follower.advance(dt);
+    const Eigen::Vector3f& p = follower.pose().position_W;
+    const float moved = (p - result.flown_W.back()).norm();
+    if (moved > 1e-4f) {
+      result.path_length_m += moved;
+      result.flown_W.push_back(p);
+    }
+    result.sim_time_s = t + dt;
+  }
+  result.explored_fraction = result.curve.empty() ? 0.0 : result.curve.back().explored_fraction;
+  result.collisions =
+      countCollisions(truth_, result.flown_W, config_.robot.radius_m, result.min_clearance_m);
+  result.wall_s = msSince(wall_start) / 1000.0;
+  return result;
+}
+
+}  // namespace strata::explore

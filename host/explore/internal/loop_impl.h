@@ -1,0 +1,31 @@
+#pragma once
+// The exploration loop's state (exploration_loop.cpp, exploration_setup.cpp).
+#include <memory>
+
+#include "explore/exploration_loop.h"
+#include "plan/collision_checker.h"
+#include "sim/sensors/rgbd_camera.h"
+
+namespace strata::explore {
+
+sim::RgbdCameraConfig cameraConfig(const ExplorationConfig& config);
+MapperConfig mapperConfig(const ExplorationConfig& config);
+
+struct ExplorationLoop::Impl {
+  Impl(const ExplorationConfig& config, const sim::World& world, const RobotPose& start,
+       vk::Context& context)
+      : camera(cameraConfig(config)), follower(config.robot, start), gain(context, config.gain) {
+    const sim::Light& light = world.session(0).light;
+    lighting.direction_W = light.direction_W.normalized();
+    lighting.intensity = light.intensity;
+    lighting.ambient = light.ambient;
+  }
+
+  sim::RgbdCamera camera;
+  sim::Lighting lighting;
+  PathFollower follower;
+  ViewGainKernel gain;
+  std::unique_ptr<plan::DeviceCollisionChecker> checker;  // after the first ESDF update
+};
+
+}  // namespace strata::explore

@@ -1,0 +1,88 @@
+// Closed-loop exploration of the shipped room in the simulator (short, low resolution), and the
+// input errors of `strata explore`.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "cli/explore_command.h"
+#include "explore/exploration_loop.h"
+#include "explore/history_planner.h"
+#include "explore/nbvp_planner.h"
+#include "fusion_fixture.h"
+#include "sim/world/world.h"
+#include "sim/world/world_paths.h"
+#include "test_utils.h"
+
+namespace strata::explore {
+namespace {
+
+struct RoomRun {
+  ExplorationResult result;
+  std::size_t reachable = 0;
+};
+
+RoomRun exploreRoom(ExplorationPlanner& planner, double time_limit_s) {
+  const sim::World world = sim::World::load(sim::findWorld("room"));
+  ExplorationConfig config;
+  config.time_limit_s = time_limit_s;
+  config.eval_period_s = 5.0;
+  const Eigen::Vector3f start = defaultStart(world, 1.2f, config);
+  const Eigen::AlignedBox3d b = world.bounds();
+  const ExplorationTruth truth(world, {b.min().cast<float>(), b.max().cast<float>()}, start,
+                               config.voxel_size_m);
+  ExplorationLoop loop(world, truth, config, {start, 0.0f}, test::sharedContext());
+  RoomRun run;
+  run.result = loop.run(planner);
+  run.reachable = truth.reachableVoxels();
+  return run;
+}
+
+TEST(ExplorationLoop, HistoryPlannerExploresTheRoomWithoutCollision) {
+  HistoryPlanner planner(HistoryConfig{});
+  const RoomRun run = exploreRoom(planner, 40.0);
+  // The room's free space at 0.1 m: 5 x 4 x 2.5 m less the furniture.
+  EXPECT_GT(run.reachable, 40000u);
+  EXPECT_LT(run.reachable, 50000u);
+  EXPECT_GT(run.result.explored_fraction, 0.85);
+  EXPECT_EQ(run.result.collisions, 0);
+  EXPECT_GE(run.result.min_clearance_m, 0.3f);
+  EXPECT_GT(run.result.path_length_m, 3.0);
+  ASSERT_FALSE(run.result.curve.empty());
+  // The share never falls (observed voxels stay observed) and grows from the start.
+  for (std::size_t i = 1; i < run.result.curve.size(); ++i) {
+    EXPECT_GE(run.result.curve[i].explored_fraction, run.result.curve[i - 1].explored_fraction);
+  }
+  EXPECT_GT(run.result.explored_fraction, run.result.curve.front().explored_fraction + 0.3);
+}
+
+TEST(ExplorationLoop, NbvpExploresTheRoomWithoutCollision) {
+  NbvpPlanner planner(NbvpConfig{});
+  const RoomRun run = exploreRoom(planner, 40.0);
+  EXPECT_GT(run.result.explored_fraction, 0.7);
+  EXPECT_EQ(run.result.collisions, 0);
+  EXPECT_GT(run.result.steps.size(), 5u);
+}
+
+TEST(ExploreCommand, BadInputIsAnInputError) {
+  const std::filesystem::path out = test::freshTempDir("explore_cli");
+  apps::ExploreOptions o;
+  o.out_dir = out.string();
+  o.world_path = (out / "missing.yaml").string();
+  EXPECT_EQ(apps::runExplore(o), 2);
+  o.world_path = sim::findWorld("room");
+  o.start = "1,2";
+  EXPECT_EQ(apps::runExplore(o), 2);
+  o.start = "2.5,2,nan";
+  EXPECT_EQ(apps::runExplore(o), 2);
+  o.start = "0.05,0.05,1.2";  // against the walls: no room for the robot
+  EXPECT_EQ(apps::runExplore(o), 2);
+  o.start.clear();
+  o.planner = "frontier";
+  EXPECT_EQ(apps::runExplore(o), 2);
+  o.planner = "history";
+  o.voxel_size_m = -0.1f;
+  EXPECT_EQ(apps::runExplore(o), 2);
+}
+
+}  // namespace
+}  // namespace strata::explore

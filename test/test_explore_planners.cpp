@@ -1,0 +1,245 @@
+// The exploration pieces that need no device: the robot's motion limits, the history graph's
+// shortest paths, and the history-aware planner going back to a cached view once the local gain
+// is exhausted (a synthetic corridor, a fake collision checker and a fake gain oracle).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+
+#include "explore/history_graph.h"
+#include "explore/history_planner.h"
+#include "explore/nbvp_planner.h"
+#include "explore/robot_model.h"
+
+namespace strata::explore {
+namespace {
+
+TEST(RobotModel, TrapezoidProfileDurations) {
+  // Long enough to cruise: L / v + v / a.
+  EXPECT_NEAR(TrapezoidProfile(5.0, 1.0, 1.0).duration(), 6.0, 1e-9);
+  // Too short to reach full speed: triangular, 2 sqrt(L / a).
+  EXPECT_NEAR(TrapezoidProfile(0.5, 1.0, 1.0).duration(), 2.0 * std::sqrt(0.5), 1e-9);
+  EXPECT_NEAR(TrapezoidProfile(5.0, 1.0, 1.0).distanceAt(6.0), 5.0, 1e-9);
+}
+
+TEST(RobotModel, RespectsSpeedAccelerationAndYawRate) {
+  RobotConfig config;
+  config.max_speed_mps = 0.8f;
+  config.max_accel_mps2 = 0.5f;
+  config.max_yaw_rate_radps = 0.6f;
+  PathFollower robot(config, {Eigen::Vector3f(0, 0, 1), 0.0f});
+  robot.setPath({{Eigen::Vector3f(3, 0, 1), 1.5f},
+                 {Eigen::Vector3f(3, 0.3f, 1.2f), -2.5f},
+                 {Eigen::Vector3f(-1, 2, 1), 3.0f}});
+  const double dt = 0.01;
+  Eigen::Vector3f previous = robot.pose().position_W;
+  float previous_yaw = robot.pose().yaw_rad;
+  double previous_speed = 0.0;
+  double t = 0.0;
+  for (; t < 120.0 && !robot.done(); t += dt) {
+    robot.advance(dt);
+    const double speed = (robot.pose().position_W - previous).norm() / dt;
+    EXPECT_LE(speed, config.max_speed_mps + 1e-3) << "t = " << t;
+    // Acceleration from speeds one step apart (the profile's own speed is exact).
+    EXPECT_LE(std::abs(robot.speed() - previous_speed) / dt, config.max_accel_mps2 + 1e-3);
+    EXPECT_LE(std::abs(wrapAngle(robot.pose().yaw_rad - previous_yaw)) / dt,
+              config.max_yaw_rate_radps + 1e-3);
+    previous = robot.pose().position_W;
+    previous_yaw = robot.pose().yaw_rad;
+    previous_speed = robot.speed();
+  }
+  ASSERT_TRUE(robot.done());
+  EXPECT_LT((robot.pose().position_W - Eigen::Vector3f(-1, 2, 1)).norm(), 1e-4f);
+  EXPECT_NEAR(robot.pose().yaw_rad, 3.0f, 1e-4f);
+  // No faster than the limits allow: the three segments at least take their profiles' times.
+  const double lower = TrapezoidProfile(3.0, 0.8, 0.5).duration() +
+                       TrapezoidProfile(std::sqrt(0.13), 0.8, 0.5).duration() +
+                       TrapezoidProfile(std::sqrt(16.0 + 3.24), 0.8, 0.5).duration();
+  EXPECT_GE(t, lower - 0.02);
+}
+
+TEST(RobotModel, TurnsInPlaceAtAWaypoint) {
+  PathFollower robot(RobotConfig{}, {Eigen::Vector3f::Zero(), 0.0f});
+  robot.setPath({{Eigen::Vector3f::Zero(), 1.5f}});  // no translation, only a turn
+  robot.advance(1.0);
+  EXPECT_NEAR(robot.pose().yaw_rad, 0.75f, 1e-5f);
+  EXPECT_FALSE(robot.atWaypoint());
+  robot.advance(1.5);
+  EXPECT_NEAR(robot.pose().yaw_rad, 1.5f, 1e-5f);
+  EXPECT_TRUE(robot.done());
+}
+
+TEST(HistoryGraph, ShortestPathAndRerouting) {
+  HistoryGraph g;
+  const int a = g.addNode({0, 0, 0}), b = g.addNode({1, 0, 0}), c = g.addNode({2, 0, 0});
+  const int d = g.addNode({1, 2, 0});
+  g.addEdge(a, b);
+  g.addEdge(b, c);
+  g.addEdge(a, d);
+  g.addEdge(d, c);
+  std::vector<int> parents;
+  std::vector<double> dist = g.shortestFrom(a, parents);
+  EXPECT_NEAR(dist[c], 2.0, 1e-6);
+  EXPECT_EQ(HistoryGraph::pathTo(parents, a, c), (std::vector<int>{a, b, c}));
+  g.removeEdge(b, c);
+  dist = g.shortestFrom(a, parents);
+  EXPECT_NEAR(dist[c], 2.0 * std::sqrt(5.0), 1e-5);
+  EXPECT_EQ(HistoryGraph::pathTo(parents, a, c), (std::vector<int>{a, d, c}));
+  const int lonely = g.addNode({5, 5, 5});
+  dist = g.shortestFrom(a, parents);
+  EXPECT_TRUE(std::isinf(dist[lonely]));
+  EXPECT_TRUE(HistoryGraph::pathTo(parents, a, lonely).empty());
+}
+
+/// A straight corridor along x (|x| <= 8, |y| <= 1, z in [0.2, 1.8]), everything known.
+class CorridorChecker final : public plan::CollisionChecker {
+ public:
+  static float clearance(const Eigen::Vector3f& p) {
+    return std::min(
+        {8.0f - std::abs(p.x()), 1.0f - std::abs(p.y()), 0.8f - std::abs(p.z() - 1.0f)});
+  }
+  std::vector<std::uint8_t> spheresFree(const std::vector<Eigen::Vector3f>& centres, float radius_m,
+                                        UnknownPolicy) override {
+    std::vector<std::uint8_t> out;
+    for (const auto& c : centres) out.push_back(clearance(c) > radius_m ? 1 : 0);
+    spheres_tested_ += centres.size();
+    return out;
+  }
+  std::vector<EsdfSample> sample(const std::vector<Eigen::Vector3f>& points) override {
+    std::vector<EsdfSample> out;
+    for (const auto& p : points) {
+      EsdfSample s;
+      s.status = EsdfStatus::kKnown;
+      s.distance_m = clearance(p);
+      s.gradient = Eigen::Vector3f::Zero();  // no push: the test is about the planner's memory
+      out.push_back(s);
+    }
+    return out;
+  }
+  float voxelSize() const override { return 0.1f; }
+  float maxDistance() const override { return 2.0f; }
+};
+
+/// Two pockets of unknown space at x = -6 and x = +6: a view within 2 m of a pocket gains 5 m^3
+/// until the robot has been within 0.7 m of it.
+struct Pockets {
+  std::vector<Eigen::Vector3f> centres{{-6.0f, 0.0f, 1.0f}, {6.0f, 0.0f, 1.0f}};
+  std::vector<bool> consumed{false, false};
+  ViewGainConfig config;
+
+  void visit(const Eigen::Vector3f& p) {
+    for (std::size_t i = 0; i < centres.size(); ++i) {
+      if ((p - centres[i]).norm() < 0.7f) consumed[i] = true;
+    }
+  }
+  std::vector<ViewGain> gains(const std::vector<Eigen::Vector3f>& positions) const {
+    std::vector<ViewGain> out;
+    for (const auto& p : positions) {
+      float g = 0.0f;
+      for (std::size_t i = 0; i < centres.size(); ++i) {
+        if (!consumed[i] && (p - centres[i]).norm() < 2.0f) g = 5.0f;
+      }
+      ViewGain v;
+      v.bin_gain_m3.assign(static_cast<std::size_t>(config.yaw_bins), g / 6.0f);
+      v.best_gain_m3 = g;
+      out.push_back(v);
+    }
+    return out;
+  }
+};
+
+ExplorationState corridorState(CorridorChecker& checker, const Pockets& pockets) {
+  ExplorationState state;
+  state.check_radius_m = 0.35f;
+  state.bounds_W =
+      Eigen::AlignedBox3f(Eigen::Vector3f(-7.7f, -0.7f, 0.5f), Eigen::Vector3f(7.7f, 0.7f, 1.5f));
+  state.checker = &checker;
+  state.gain_config = pockets.config;
+  state.gain = [&pockets](const std::vector<Eigen::Vector3f>& p) { return pockets.gains(p); };
+  return state;
+}
+
+struct CorridorRun {
+  std::vector<bool> consumed;
+  std::set<std::string> modes;
+  bool finished = false;
+};
+
+/// The history planner from the corridor's middle: its local box (7 m) sees both pockets from
+/// there, but from one pocket not the other, so only the cache knows the second one then.
+CorridorRun runCorridor(const HistoryConfig& config) {
+  CorridorChecker checker;
+  Pockets pockets;
+  HistoryPlanner planner(config);
+  ExplorationState state = corridorState(checker, pockets);
+  state.pose.position_W = Eigen::Vector3f(0.0f, 0.0f, 1.0f);
+  CorridorRun run;
+  for (int step = 0; step < 60 && !run.finished; ++step) {
+    const ExplorationStep s = planner.plan(state);
+    run.modes.insert(s.mode);
+    run.finished = s.finished;
+    for (const Waypoint& w : s.path) {
+      // Every flown edge stays in free space.
+      EXPECT_TRUE(checker.segmentFree(state.pose.position_W, w.position_W, state.check_radius_m,
+                                      UnknownPolicy::kOccupied));
+      state.pose = {w.position_W, w.yaw_rad};
+      pockets.visit(w.position_W);
+    }
+  }
+  run.consumed = pockets.consumed;
+  return run;
+}
+
+HistoryConfig corridorConfig() {
+  HistoryConfig config;
+  config.tree.half_extent_m = Eigen::Vector3f(7.0f, 1.0f, 0.5f);
+  config.tree.nodes = 60;
+  config.tree.max_batches = 20;
+  return config;
+}
+
+TEST(HistoryPlanner, ReturnsToACachedViewWhenTheLocalGainIsExhausted) {
+  const CorridorRun run = runCorridor(corridorConfig());
+  EXPECT_TRUE(run.consumed[0]);
+  EXPECT_TRUE(run.consumed[1]);
+  EXPECT_TRUE(run.modes.count("global")) << "the second pocket was reached without the cache";
+  EXPECT_TRUE(run.finished);
+}
+
+TEST(HistoryPlanner, WithoutTheCacheTheFarPocketIsLeft) {
+  HistoryConfig config = corridorConfig();
+  config.cache_gain_m3 = 1e9f;  // nothing is ever cached
+  const CorridorRun run = runCorridor(config);
+  EXPECT_NE(run.consumed[0], run.consumed[1]);  // one pocket taken, the other never reached
+  EXPECT_FALSE(run.modes.count("global"));
+  EXPECT_TRUE(run.finished);
+}
+
+TEST(NbvpPlanner, FliesTheFirstEdgeTowardsGainAndStopsWithoutGain) {
+  CorridorChecker checker;
+  Pockets pockets;
+  pockets.centres = {{3.0f, 0.0f, 1.0f}};
+  pockets.consumed = {false};
+  NbvpConfig config;
+  NbvpPlanner planner(config);
+  ExplorationState state = corridorState(checker, pockets);
+  state.pose.position_W = Eigen::Vector3f(0.0f, 0.0f, 1.0f);
+  bool finished = false;
+  int steps = 0;
+  for (; steps < 60 && !finished; ++steps) {
+    const ExplorationStep s = planner.plan(state);
+    finished = s.finished;
+    if (!s.path.empty()) {
+      EXPECT_EQ(s.path.size(), 1u);  // receding horizon: one edge per step
+      EXPECT_LE((s.path.front().position_W - state.pose.position_W).norm(),
+                config.tree.max_edge_m + 1e-4f);
+      state.pose = {s.path.front().position_W, s.path.front().yaw_rad};
+      pockets.visit(state.pose.position_W);
+    }
+  }
+  EXPECT_TRUE(pockets.consumed[0]);
+  EXPECT_TRUE(finished);
+}
+
+}  // namespace
+}  // namespace strata::explore
