@@ -6,6 +6,8 @@
 #include <cmath>
 #include <set>
 
+#include "core/error.h"
+#include "explore/dead_end.h"
 #include "explore/history_graph.h"
 #include "explore/history_planner.h"
 #include "explore/nbvp_planner.h"
@@ -242,4 +244,44 @@ TEST(NbvpPlanner, FliesTheFirstEdgeTowardsGainAndStopsWithoutGain) {
 }
 
 }  // namespace
+// A corridor x in [10, 30], y in [3, 5] off a hall; the robot starts at (9, 4), flies to the
+// corridor's end at 1 m/s, then back into the hall.
+TEST(DeadEnd, TimesTheEscapeFromTheDeepestPoint) {
+  const Eigen::AlignedBox2f corridor(Eigen::Vector2f(10.0f, 3.0f), Eigen::Vector2f(30.0f, 5.0f));
+  std::vector<double> times;
+  std::vector<Eigen::Vector3f> positions;
+  auto fly = [&](float x0, float x1, double t0) {
+    const int n = static_cast<int>(std::abs(x1 - x0) * 10.0f);
+    for (int i = 0; i <= n; ++i) {
+      const float x = x0 + (x1 - x0) * static_cast<float>(i) / static_cast<float>(n);
+      times.push_back(t0 + std::abs(x - x0));
+      positions.emplace_back(x, 4.0f, 1.2f);
+    }
+    return t0 + std::abs(x1 - x0);
+  };
+  const Eigen::Vector3f start(9.0f, 4.0f, 1.2f);
+  double t = fly(9.0f, 29.5f, 0.0);  // in at 1 s, deepest at 20.5 s
+  const std::vector<double> times_in = times;
+  const std::vector<Eigen::Vector3f> positions_in = positions;
+  t = fly(29.5f, 8.0f, t + 4.0);  // a 4 s look at the end, then out at 10 - epsilon
+  const DeadEndEscape e = analyseDeadEnd(times, positions, corridor, start, t);
+  ASSERT_TRUE(e.entered);
+  EXPECT_NEAR(e.entered_s, 1.0, 0.11);
+  EXPECT_NEAR(e.deepest_m, 19.5f, 1e-3f);
+  EXPECT_NEAR(e.deepest_s, 20.5, 1e-6);  // the first time at the deepest point
+  ASSERT_TRUE(e.left_s.has_value());
+  EXPECT_NEAR(*e.left_s, 24.5 + 19.5, 0.11);
+  ASSERT_TRUE(e.escape_s.has_value());
+  EXPECT_NEAR(*e.escape_s, 4.0 + 19.5, 0.11);
+
+  // Still inside when the run ends: no escape, the time after the deepest point as a bound.
+  const DeadEndEscape stuck = analyseDeadEnd(times_in, positions_in, corridor, start, 100.0);
+  EXPECT_FALSE(stuck.left_s.has_value());
+  EXPECT_FALSE(stuck.escape_s.has_value());
+  EXPECT_NEAR(stuck.after_deepest_s, 100.0 - 20.5, 1e-6);
+  // Never entered.
+  EXPECT_FALSE(analyseDeadEnd({0.0}, {start}, corridor, start, 1.0).entered);
+  EXPECT_THROW(analyseDeadEnd({0.0, 1.0}, {start}, corridor, start, 1.0), InputError);
+}
+
 }  // namespace strata::explore

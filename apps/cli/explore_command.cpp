@@ -1,6 +1,8 @@
 #include "cli/explore_command.h"
 
 #include <CLI/CLI.hpp>
+#include <cmath>
+#include <optional>
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
@@ -27,6 +29,22 @@ Eigen::Vector3f parseStart(const std::string& text) {
     throw InputError("--start: expected X,Y,Z in metres, got '" + text + "'");
   }
   return p;
+}
+
+std::optional<Eigen::AlignedBox2f> parseDeadEnd(const std::string& text) {
+  if (text.empty()) return std::nullopt;
+  std::stringstream s(text);
+  float v[4];
+  char comma[3] = {0, 0, 0};
+  s >> v[0] >> comma[0] >> v[1] >> comma[1] >> v[2] >> comma[2] >> v[3];
+  const bool finite = std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]) &&
+                      std::isfinite(v[3]);
+  if (s.fail() || comma[0] != ',' || comma[1] != ',' || comma[2] != ',' ||
+      !(s >> std::ws).eof() || !finite || !(v[0] < v[2]) || !(v[1] < v[3])) {
+    throw InputError("--dead-end: expected X0,Y0,X1,Y1 in metres with X0 < X1 and Y0 < Y1, got '" +
+                     text + "'");
+  }
+  return Eigen::AlignedBox2f(Eigen::Vector2f(v[0], v[1]), Eigen::Vector2f(v[2], v[3]));
 }
 
 explore::ExplorationConfig loopConfig(const ExploreOptions& o) {
@@ -99,6 +117,7 @@ int runChecked(const ExploreOptions& o) {
     throw InputError("--planner must be history or nbvp, got '" + o.planner + "'");
   }
   const explore::ExplorationConfig config = loopConfig(o);
+  const std::optional<Eigen::AlignedBox2f> dead_end = parseDeadEnd(o.dead_end);
   const auto world = loadWorld(o.world_path, 0, 1);
   const Eigen::Vector3f start = o.start.empty()
                                     ? explore::defaultStart(*world, kDefaultStartHeightM, config)
@@ -118,7 +137,7 @@ int runChecked(const ExploreOptions& o) {
   }
   writeExploreCurvePng((fs::path(o.out_dir) / "curve.png").string(), world->name(), results);
   writeExploreReport((fs::path(o.out_dir) / "report.json").string(), world->name(), results, config,
-                     start, o.seed);
+                     start, o.seed, dead_end);
   return 0;
 }
 
@@ -139,6 +158,9 @@ CLI::App* addExploreCommand(CLI::App& app, ExploreOptions& o) {
   cmd->add_option("--start", o.start,
                   "Start X,Y,Z (metres); default: nearest the first room's centre at 1.2 m with "
                   "room for the start clearing");
+  cmd->add_option("--dead-end", o.dead_end,
+                  "X0,Y0,X1,Y1: a dead end from above (metres); report.json then times how long "
+                  "each planner took to leave it (worlds/deadend.yaml: 10.1,3,32.1,5)");
   cmd->add_option("--width", o.camera_width_px, "Camera width, px")->capture_default_str();
   cmd->add_option("--height", o.camera_height_px, "Camera height, px")->capture_default_str();
   cmd->add_option("--eval-period", o.eval_period_s,

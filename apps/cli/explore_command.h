@@ -20,6 +20,7 @@ struct ExploreOptions {
   double time_limit_s = 600.0;      // simulated
   float voxel_size_m = 0.1f;
   std::string start;  // "X,Y,Z" metres; "" = defaultStart of the world
+  std::string dead_end;  // "X0,Y0,X1,Y1" metres: a dead end from above to time the escape from
   int camera_width_px = 160;
   int camera_height_px = 120;
   double eval_period_s = 5.0;

@@ -8,6 +8,7 @@
 #include "cli/esdf_slice.h"
 #include "core/atomic_file.h"
 #include "core/json_text.h"
+#include "explore/dead_end.h"
 
 namespace strata::apps {
 namespace {
@@ -25,7 +26,26 @@ double percentile(std::vector<double> values, double q) {
   return values[lo] + (pos - static_cast<double>(lo)) * (values[hi] - values[lo]);
 }
 
-std::string runJson(const explore::ExplorationResult& r) {
+std::string optionalNumber(const std::optional<double>& value) {
+  return value ? jsonNumber(*value) : std::string("null");
+}
+
+std::string deadEndJson(const explore::ExplorationResult& r, const Eigen::AlignedBox2f& region,
+                        const Eigen::Vector3f& start_W) {
+  const explore::DeadEndEscape e =
+      explore::analyseDeadEnd(r.flown_time_s, r.flown_W, region, start_W, r.sim_time_s);
+  std::ostringstream j;
+  j << "{\"entered\": " << (e.entered ? "true" : "false")
+    << ", \"entered_s\": " << (e.entered ? jsonNumber(e.entered_s) : "null")
+    << ", \"deepest_s\": " << (e.entered ? jsonNumber(e.deepest_s) : "null")
+    << ", \"deepest_m\": " << jsonNumber(e.deepest_m)
+    << ", \"left_s\": " << optionalNumber(e.left_s)
+    << ", \"escape_s\": " << optionalNumber(e.escape_s)
+    << ", \"after_deepest_s\": " << jsonNumber(e.after_deepest_s) << "}";
+  return j.str();
+}
+
+std::string runJson(const explore::ExplorationResult& r, const std::string& dead_end_json) {
   const StepTimes times = stepTimes(r);
   const double t90 = timeToFraction(r, 0.9);
   std::size_t global_steps = 0;
@@ -42,7 +62,9 @@ std::string runJson(const explore::ExplorationResult& r) {
     << ", \"wall_s\": " << jsonNumber(r.wall_s)
     << ", \"stop_reason\": " << jsonQuoted(r.stop_reason)
     << ", \"reachable_voxels\": " << r.reachable_voxels
-    << ", \"start_clearing_fraction\": " << jsonNumber(r.start_clearing_fraction) << "}";
+    << ", \"start_clearing_fraction\": " << jsonNumber(r.start_clearing_fraction);
+  if (!dead_end_json.empty()) j << ", \"dead_end\": " << dead_end_json;
+  j << "}";
   return j.str();
 }
 
@@ -89,7 +111,8 @@ double timeToFraction(const explore::ExplorationResult& result, double fraction)
 void writeExploreReport(const std::string& path, const std::string& world,
                         const std::vector<explore::ExplorationResult>& results,
                         const explore::ExplorationConfig& config, const Eigen::Vector3f& start_W,
-                        unsigned long long seed) {
+                        unsigned long long seed,
+                        const std::optional<Eigen::AlignedBox2f>& dead_end_xy) {
   std::ostringstream j;
   j << "{\n  \"world\": " << jsonQuoted(world) << ",\n  \"seed\": " << seed << ",\n  \"start\": ["
     << jsonNumber(start_W.x()) << ", " << jsonNumber(start_W.y()) << ", " << jsonNumber(start_W.z())
@@ -98,7 +121,7 @@ void writeExploreReport(const std::string& path, const std::string& world,
     << config.camera_width_px << ", " << config.camera_height_px << "],\n  \"planners\": {";
   for (std::size_t i = 0; i < results.size(); ++i) {
     j << (i ? ",\n    " : "\n    ") << jsonQuoted(results[i].planner) << ": "
-      << runJson(results[i]);
+      << runJson(results[i], dead_end_xy ? deadEndJson(results[i], *dead_end_xy, start_W) : "");
   }
   j << "\n  }\n}\n";
   writeText(path, j.str());

@@ -68,6 +68,7 @@ ExplorationResult ExplorationLoop::run(ExplorationPlanner& planner,
   std::size_t steps_at_last_point = 0;
   std::uint64_t frames = 0;
   result.flown_W.push_back(follower.pose().position_W);
+  result.flown_time_s.push_back(0.0);
 
   ExplorationState state;
   state.check_radius_m = config_.robot.radius_m + config_.collision_margin_m;
@@ -149,6 +150,7 @@ ExplorationResult ExplorationLoop::run(ExplorationPlanner& planner,
     if (moved > 1e-4f) {
       result.path_length_m += moved;
       result.flown_W.push_back(p);
+      result.flown_time_s.push_back(t + dt);
     }
     result.sim_time_s = t + dt;
   }

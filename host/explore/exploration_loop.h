@@ -94,6 +94,8 @@ struct ExplorationResult {
   std::vector<StepRecord> steps;
   /// Positions flown, at most one motion step (<= 0.05 m at 1 m/s) apart.
   std::vector<Eigen::Vector3f> flown_W;
+  /// Simulated time of each of flown_W (seconds).
+  std::vector<double> flown_time_s;
   double path_length_m = 0.0;
   /// Contiguous stretches of the flown path whose true clearance is below the robot's radius.
   int collisions = 0;
