@@ -71,7 +71,7 @@ ExplorationResult ExplorationLoop::run(ExplorationPlanner& planner,
   result.flown_time_s.push_back(0.0);
 
   ExplorationState state;
-  state.check_radius_m = config_.robot.radius_m + config_.collision_margin_m;
+  state.check_radius_m = config_.checkRadius();
   state.bounds_W = bounds_W_;
   state.gain_config = config_.gain;
   ViewGainKernel& kernel = impl_->gain;

@@ -34,9 +34,13 @@ namespace strata::explore {
 
 struct ExplorationConfig {
   RobotConfig robot;
-  /// Added to the robot's radius in the planners' collision checks (metres): the ESDF knows
-  /// obstacles to the voxel centre, the true surface can be half a voxel diagonal nearer.
+  /// Added to the robot's radius in the planners' collision checks (metres), at least
+  /// kMarginVoxels voxels (checkRadius()): the ESDF knows obstacles to the voxel centre, the true
+  /// surface can be half a voxel diagonal (0.87 voxel) nearer, and noisy depth blurs thin parts.
   float collision_margin_m = 0.05f;
+  static constexpr float kMarginVoxels = 1.0f;
+  /// Robot radius + the margin: the radius of every collision check of the planners.
+  float checkRadius() const;
   float voxel_size_m = 0.1f;
   /// The simulated camera: a smaller image renders and fuses faster; the field of view
   /// follows the gain model's (horizontal_fov_rad; the vertical one from the aspect ratio).

@@ -55,7 +55,7 @@ void requireClearStart(const sim::WorldScene& scene, const Eigen::Vector3f& star
 }  // namespace
 
 float startClearanceNeeded(const ExplorationConfig& config) {
-  return config.robot.radius_m + config.collision_margin_m + 0.2f;
+  return config.checkRadius() + 0.2f;
 }
 
 Eigen::Vector3f defaultStart(const sim::World& world, float height_m,
@@ -89,6 +89,10 @@ ViewGainConfig ExplorationConfig::coarseGain() {
   g.rays_per_bin = 1;
   g.elevation_rays = 8;
   return g;
+}
+
+float ExplorationConfig::checkRadius() const {
+  return robot.radius_m + std::max(collision_margin_m, kMarginVoxels * voxel_size_m);
 }
 
 void ExplorationConfig::validate() const {
