@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "change_test_scene.h"
 #include "esdf/esdf.h"
 
 namespace strata::test {
@@ -34,29 +35,9 @@ double PlanRoom::signedDistance(const Eigen::Vector3d& p) const {
 }
 
 TsdfMap PlanRoom::tsdf() const {
-  MapConfig config;
-  config.voxel_size_m = kVoxelM;
-  TsdfMap map(config);
-  const double trunc = config.truncationDistance();
-  const float block_m = config.blockSize();
-  const BlockIndex b0 = (kLo.cast<float>() / block_m).array().floor().cast<int>();
-  const BlockIndex b1 = (kHi.cast<float>() / block_m).array().floor().cast<int>();
-  for (int bz = b0.z(); bz <= b1.z(); ++bz) {
-    for (int by = b0.y(); by <= b1.y(); ++by) {
-      for (int bx = b0.x(); bx <= b1.x(); ++bx) {
-        const BlockIndex b(bx, by, bz);
-        TsdfBlock& block = map.allocateBlock(b);
-        for (int i = 0; i < kVoxelsPerBlock; ++i) {
-          const Eigen::Vector3i local(i % 8, i / 8 % 8, i / 64);
-          const double d =
-              signedDistance(voxelCenter(b * kBlockEdge + local, kVoxelM).cast<double>());
-          block[i].tsdf_m = static_cast<float>(std::clamp(d, -trunc, trunc));
-          block[i].weight = d > -trunc ? 20.0f : 0.0f;  // deep inside walls: never observed
-        }
-      }
-    }
-  }
-  return map;
+  // Observed wherever in front of or within the band; deep inside walls never.
+  return makeSdfMap([this](const Eigen::Vector3d& p) { return signedDistance(p); }, kLo, kHi,
+                    kVoxelM, [](const Eigen::Vector3d&) { return true; });
 }
 
 EsdfMap PlanRoom::esdf() const {
