@@ -12,7 +12,7 @@ ctest --output-on-failure -j 2 --timeout 900
 STRATA_DEVICE_MEMORY=staged ctest --output-on-failure -j 2 --timeout 900 -L device
 # Sanitizers: everything rebuilt with clang, ASan + UBSan (build-san/), the unit and device tests
 # again under them (validation layer on; any report fails). Then every parser of outside data
-# fuzzed from its committed corpus for a bounded time (STRATA_FUZZ_SECONDS per target, 30 by
+# fuzzed from its committed corpus for a bounded time (STRATA_FUZZ_SECONDS per target, 15 by
 # default). The acceptance runs are left to the build above. docs/reliability.md.
 "$ROOT/scripts/sanitize.sh"
-"$ROOT/scripts/fuzz.sh" "${STRATA_FUZZ_SECONDS:-30}"
+"$ROOT/scripts/fuzz.sh" "${STRATA_FUZZ_SECONDS:-15}"

@@ -264,7 +264,7 @@ TEST(DeadEnd, TimesTheEscapeFromTheDeepestPoint) {
   const std::vector<double> times_in = times;
   const std::vector<Eigen::Vector3f> positions_in = positions;
   t = fly(29.5f, 8.0f, t + 4.0);  // a 4 s look at the end, then out at 10 - epsilon
-  const DeadEndEscape e = analyseDeadEnd(times, positions, corridor, start, t);
+  const DeadEndEscape e = analyseDeadEnd(times, positions, deadEndSeenFrom(corridor, start), t);
   ASSERT_TRUE(e.entered);
   EXPECT_NEAR(e.entered_s, 1.0, 0.11);
   EXPECT_NEAR(e.deepest_m, 19.5f, 1e-3f);
@@ -275,13 +275,30 @@ TEST(DeadEnd, TimesTheEscapeFromTheDeepestPoint) {
   EXPECT_NEAR(*e.escape_s, 4.0 + 19.5, 0.11);
 
   // Still inside when the run ends: no escape, the time after the deepest point as a bound.
-  const DeadEndEscape stuck = analyseDeadEnd(times_in, positions_in, corridor, start, 100.0);
+  const DeadEndEscape stuck =
+      analyseDeadEnd(times_in, positions_in, deadEndSeenFrom(corridor, start), 100.0);
   EXPECT_FALSE(stuck.left_s.has_value());
   EXPECT_FALSE(stuck.escape_s.has_value());
   EXPECT_NEAR(stuck.after_deepest_s, 100.0 - 20.5, 1e-6);
   // Never entered.
-  EXPECT_FALSE(analyseDeadEnd({0.0}, {start}, corridor, start, 1.0).entered);
-  EXPECT_THROW(analyseDeadEnd({0.0, 1.0}, {start}, corridor, start, 1.0), InputError);
+  EXPECT_FALSE(analyseDeadEnd({0.0}, {start}, deadEndSeenFrom(corridor, start), 1.0).entered);
+  EXPECT_THROW(analyseDeadEnd({0.0, 1.0}, {start}, deadEndSeenFrom(corridor, start), 1.0),
+               InputError);
+  EXPECT_THROW(analyseDeadEnd({0.0}, {start}, DeadEnd{}, 1.0), InputError);  // empty region
+
+  // A start inside the dead end: depth counts from the given mouth, not from the start.
+  const DeadEnd opening_west{corridor, Eigen::Vector2f(10.0f, 4.0f)};
+  times.clear();
+  positions.clear();
+  t = fly(20.0f, 29.0f, 0.0);  // deepest (19 m from the mouth) at 9 s
+  t = fly(29.0f, 9.0f, t);     // out at x < 10: 19 s later
+  const DeadEndEscape inside = analyseDeadEnd(times, positions, opening_west, t);
+  ASSERT_TRUE(inside.entered);
+  EXPECT_NEAR(inside.entered_s, 0.0, 1e-9);
+  EXPECT_NEAR(inside.deepest_m, 19.0f, 1e-3f);
+  EXPECT_NEAR(inside.deepest_s, 9.0, 1e-6);
+  ASSERT_TRUE(inside.escape_s.has_value());
+  EXPECT_NEAR(*inside.escape_s, 19.0, 0.11);
 }
 
 }  // namespace strata::explore

@@ -2,14 +2,16 @@
 
 #include <CLI/CLI.hpp>
 #include <cmath>
-#include <optional>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <sstream>
+#include <vector>
 
 #include "cli/explore_outputs.h"
 #include "cli/sim_setup.h"
 #include "core/error.h"
+#include "explore/dead_end.h"
 #include "explore/history_planner.h"
 #include "explore/nbvp_planner.h"
 #include "mesh/ply.h"
@@ -20,31 +22,50 @@ namespace {
 namespace fs = std::filesystem;
 constexpr float kDefaultStartHeightM = 1.2f;
 
-Eigen::Vector3f parseStart(const std::string& text) {
+/// `count` comma-separated finite numbers, else an InputError naming the option and `expected`.
+std::vector<float> parseNumbers(const std::string& text, std::size_t count, const char* option,
+                                const char* expected) {
   std::stringstream s(text);
-  Eigen::Vector3f p;
-  char comma1 = 0, comma2 = 0;
-  s >> p.x() >> comma1 >> p.y() >> comma2 >> p.z();
-  if (s.fail() || comma1 != ',' || comma2 != ',' || !(s >> std::ws).eof() || !p.allFinite()) {
-    throw InputError("--start: expected X,Y,Z in metres, got '" + text + "'");
+  std::vector<float> v(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    char comma = ',';
+    if (i > 0) s >> comma;
+    s >> v[i];
+    if (s.fail() || comma != ',' || !std::isfinite(v[i])) break;
+    if (i + 1 == count && (s >> std::ws).eof()) return v;
   }
-  return p;
+  throw InputError(std::string(option) + ": expected " + expected + ", got '" + text + "'");
 }
 
-std::optional<Eigen::AlignedBox2f> parseDeadEnd(const std::string& text) {
-  if (text.empty()) return std::nullopt;
-  std::stringstream s(text);
-  float v[4];
-  char comma[3] = {0, 0, 0};
-  s >> v[0] >> comma[0] >> v[1] >> comma[1] >> v[2] >> comma[2] >> v[3];
-  const bool finite = std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]) &&
-                      std::isfinite(v[3]);
-  if (s.fail() || comma[0] != ',' || comma[1] != ',' || comma[2] != ',' ||
-      !(s >> std::ws).eof() || !finite || !(v[0] < v[2]) || !(v[1] < v[3])) {
-    throw InputError("--dead-end: expected X0,Y0,X1,Y1 in metres with X0 < X1 and Y0 < Y1, got '" +
-                     text + "'");
+Eigen::Vector3f parseStart(const std::string& text) {
+  const std::vector<float> v = parseNumbers(text, 3, "--start", "X,Y,Z in metres");
+  return {v[0], v[1], v[2]};
+}
+
+/// The dead end to time, if any: its region and where it opens.
+std::optional<explore::DeadEnd> parseDeadEnd(const ExploreOptions& o,
+                                             const Eigen::Vector3f& start_W) {
+  if (o.dead_end.empty()) {
+    if (!o.dead_end_mouth.empty()) throw InputError("--dead-end-mouth needs --dead-end");
+    return std::nullopt;
   }
-  return Eigen::AlignedBox2f(Eigen::Vector2f(v[0], v[1]), Eigen::Vector2f(v[2], v[3]));
+  const char* expected = "X0,Y0,X1,Y1 in metres with X0 < X1 and Y0 < Y1";
+  const std::vector<float> v = parseNumbers(o.dead_end, 4, "--dead-end", expected);
+  if (!(v[0] < v[2]) || !(v[1] < v[3])) {
+    throw InputError(std::string("--dead-end: expected ") + expected + ", got '" + o.dead_end +
+                     "'");
+  }
+  const Eigen::AlignedBox2f region(Eigen::Vector2f(v[0], v[1]), Eigen::Vector2f(v[2], v[3]));
+  if (o.dead_end_mouth.empty()) {
+    if (region.contains(start_W.head<2>())) {
+      throw InputError(
+          "--dead-end: the start lies inside the dead end; say where it opens with "
+          "--dead-end-mouth X,Y");
+    }
+    return explore::deadEndSeenFrom(region, start_W);
+  }
+  const std::vector<float> m = parseNumbers(o.dead_end_mouth, 2, "--dead-end-mouth", "X,Y");
+  return explore::DeadEnd{region, Eigen::Vector2f(m[0], m[1])};
 }
 
 explore::ExplorationConfig loopConfig(const ExploreOptions& o) {
@@ -84,7 +105,8 @@ explore::ExplorationResult runOne(const std::string& name, const ExploreOptions&
                                   const sim::World& world, const explore::ExplorationTruth& truth,
                                   const explore::ExplorationConfig& config,
                                   const Eigen::Vector3f& start, vk::Context& context) {
-  explore::ExplorationLoop loop(world, truth, config, {start, 0.0f}, context);
+  const float start_yaw_rad = static_cast<float>(o.start_yaw_deg * M_PI / 180.0);
+  explore::ExplorationLoop loop(world, truth, config, {start, start_yaw_rad}, context);
   auto planner = makePlanner(name, o.seed);
   explore::ExplorationResult result =
       loop.run(*planner, [&](const explore::CurvePoint& p, const explore::StepRecord* last) {
@@ -113,15 +135,16 @@ int runChecked(const ExploreOptions& o) {
   if (o.world_path.empty()) throw InputError("a world file is required");
   if (!fs::exists(o.world_path)) throw InputError("world file '" + o.world_path + "' not found");
   if (o.out_dir.empty()) throw InputError("--out DIR is required");
+  if (!std::isfinite(o.start_yaw_deg)) throw InputError("--start-yaw must be a finite angle");
   if (o.planner != "history" && o.planner != "nbvp") {
     throw InputError("--planner must be history or nbvp, got '" + o.planner + "'");
   }
   const explore::ExplorationConfig config = loopConfig(o);
-  const std::optional<Eigen::AlignedBox2f> dead_end = parseDeadEnd(o.dead_end);
   const auto world = loadWorld(o.world_path, 0, 1);
   const Eigen::Vector3f start = o.start.empty()
                                     ? explore::defaultStart(*world, kDefaultStartHeightM, config)
                                     : parseStart(o.start);
+  const std::optional<explore::DeadEnd> dead_end = parseDeadEnd(o, start);
   const Eigen::AlignedBox3d b = world->bounds();
   const explore::ExplorationTruth truth(*world, {b.min().cast<float>(), b.max().cast<float>()},
                                         start, o.voxel_size_m);
@@ -158,9 +181,14 @@ CLI::App* addExploreCommand(CLI::App& app, ExploreOptions& o) {
   cmd->add_option("--start", o.start,
                   "Start X,Y,Z (metres); default: nearest the first room's centre at 1.2 m with "
                   "room for the start clearing");
+  cmd->add_option("--start-yaw", o.start_yaw_deg,
+                  "Heading at the start, degrees about world z from +x")
+      ->capture_default_str();
   cmd->add_option("--dead-end", o.dead_end,
                   "X0,Y0,X1,Y1: a dead end from above (metres); report.json then times how long "
                   "each planner took to leave it (worlds/deadend.yaml: 10.1,3,32.1,5)");
+  cmd->add_option("--dead-end-mouth", o.dead_end_mouth,
+                  "X,Y: where the dead end opens (metres); default: its point nearest the start");
   cmd->add_option("--width", o.camera_width_px, "Camera width, px")->capture_default_str();
   cmd->add_option("--height", o.camera_height_px, "Camera height, px")->capture_default_str();
   cmd->add_option("--eval-period", o.eval_period_s,

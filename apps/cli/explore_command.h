@@ -1,8 +1,8 @@
 #pragma once
 // `strata explore WORLD.yaml [--planner history|nbvp] [--compare] [--seed N] [--time-limit S]
-// [--voxel M] [--start X,Y,Z] --out DIR`: closed-loop exploration of session 0 of a simulated
-// world (explore/exploration_loop.h) with the history-aware planner, the NBVP baseline, or both.
-// Writes per planner DIR/<planner>/{curve.csv, path.png, map.strata, mesh.ply}, and
+// [--voxel M] [--start X,Y,Z] [--start-yaw DEG] --out DIR`: closed-loop exploration of session 0 of
+// a simulated world (explore/exploration_loop.h) with the history-aware planner, the NBVP baseline,
+// or both. Writes per planner DIR/<planner>/{curve.csv, path.png, map.strata, mesh.ply}, and
 // DIR/curve.png (explored share vs simulated time) and DIR/report.json. Progress on stderr.
 #include <string>
 
@@ -19,8 +19,10 @@ struct ExploreOptions {
   unsigned long long seed = 1;      // planners' sampling and the camera's noise
   double time_limit_s = 600.0;      // simulated
   float voxel_size_m = 0.1f;
-  std::string start;  // "X,Y,Z" metres; "" = defaultStart of the world
+  std::string start;           // "X,Y,Z" metres; "" = defaultStart of the world
+  double start_yaw_deg = 0.0;  // heading at the start, about world z from +x
   std::string dead_end;  // "X0,Y0,X1,Y1" metres: a dead end from above to time the escape from
+  std::string dead_end_mouth;  // "X,Y" metres: where it opens; "" = its point nearest the start
   int camera_width_px = 160;
   int camera_height_px = 120;
   double eval_period_s = 5.0;

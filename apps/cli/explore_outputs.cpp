@@ -30,10 +30,9 @@ std::string optionalNumber(const std::optional<double>& value) {
   return value ? jsonNumber(*value) : std::string("null");
 }
 
-std::string deadEndJson(const explore::ExplorationResult& r, const Eigen::AlignedBox2f& region,
-                        const Eigen::Vector3f& start_W) {
+std::string deadEndJson(const explore::ExplorationResult& r, const explore::DeadEnd& dead_end) {
   const explore::DeadEndEscape e =
-      explore::analyseDeadEnd(r.flown_time_s, r.flown_W, region, start_W, r.sim_time_s);
+      explore::analyseDeadEnd(r.flown_time_s, r.flown_W, dead_end, r.sim_time_s);
   std::ostringstream j;
   j << "{\"entered\": " << (e.entered ? "true" : "false")
     << ", \"entered_s\": " << (e.entered ? jsonNumber(e.entered_s) : "null")
@@ -45,6 +44,18 @@ std::string deadEndJson(const explore::ExplorationResult& r, const Eigen::Aligne
   return j.str();
 }
 
+/// Each collision's closest approach: time, position and true clearance.
+std::string collisionEventsJson(const explore::ExplorationResult& r) {
+  std::ostringstream j;
+  for (std::size_t i = 0; i < r.collision_events.size(); ++i) {
+    const explore::CollisionEvent& e = r.collision_events[i];
+    j << (i ? ", " : "") << "{\"time_s\": " << jsonNumber(e.time_s) << ", \"p_W\": ["
+      << jsonNumber(e.p_W.x()) << ", " << jsonNumber(e.p_W.y()) << ", " << jsonNumber(e.p_W.z())
+      << "], \"clearance_m\": " << jsonNumber(e.clearance_m) << "}";
+  }
+  return j.str();
+}
+
 std::string runJson(const explore::ExplorationResult& r, const std::string& dead_end_json) {
   const StepTimes times = stepTimes(r);
   const double t90 = timeToFraction(r, 0.9);
@@ -53,7 +64,8 @@ std::string runJson(const explore::ExplorationResult& r, const std::string& dead
   std::ostringstream j;
   j << "{\"explored_fraction\": " << jsonNumber(r.explored_fraction)
     << ", \"time_to_90_s\": " << (t90 < 0.0 ? "null" : jsonNumber(t90))
-    << ", \"collisions\": " << r.collisions
+    << ", \"collisions\": " << r.collisions << ", \"collision_events\": [" << collisionEventsJson(r)
+    << "]"
     << ", \"min_clearance_m\": " << jsonNumber(r.min_clearance_m)
     << ", \"path_length_m\": " << jsonNumber(r.path_length_m)
     << ", \"step_ms_median\": " << jsonNumber(times.median_ms)
@@ -111,8 +123,7 @@ double timeToFraction(const explore::ExplorationResult& result, double fraction)
 void writeExploreReport(const std::string& path, const std::string& world,
                         const std::vector<explore::ExplorationResult>& results,
                         const explore::ExplorationConfig& config, const Eigen::Vector3f& start_W,
-                        unsigned long long seed,
-                        const std::optional<Eigen::AlignedBox2f>& dead_end_xy) {
+                        unsigned long long seed, const std::optional<explore::DeadEnd>& dead_end) {
   std::ostringstream j;
   j << "{\n  \"world\": " << jsonQuoted(world) << ",\n  \"seed\": " << seed << ",\n  \"start\": ["
     << jsonNumber(start_W.x()) << ", " << jsonNumber(start_W.y()) << ", " << jsonNumber(start_W.z())
@@ -121,7 +132,7 @@ void writeExploreReport(const std::string& path, const std::string& world,
     << config.camera_width_px << ", " << config.camera_height_px << "],\n  \"planners\": {";
   for (std::size_t i = 0; i < results.size(); ++i) {
     j << (i ? ",\n    " : "\n    ") << jsonQuoted(results[i].planner) << ": "
-      << runJson(results[i], dead_end_xy ? deadEndJson(results[i], *dead_end_xy, start_W) : "");
+      << runJson(results[i], dead_end ? deadEndJson(results[i], *dead_end) : "");
   }
   j << "\n  }\n}\n";
   writeText(path, j.str());

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "explore/dead_end.h"
 #include "explore/exploration_loop.h"
 
 namespace strata::apps {
@@ -25,14 +26,14 @@ StepTimes stepTimes(const explore::ExplorationResult& result);
 /// The first curve time at which the explored share reaches `fraction`; negative: never.
 double timeToFraction(const explore::ExplorationResult& result, double fraction);
 
-/// {"world":..., "planners": {"history": {...}, ...}}; with `dead_end_xy` (a dead end from
-/// above, explore/dead_end.h) each planner also gets "dead_end": entered_s, deepest_s,
-/// deepest_m, left_s, escape_s (null: never left), after_deepest_s.
+/// {"world":..., "planners": {"history": {...}, ...}}; with `dead_end` (explore/dead_end.h) each
+/// planner also gets "dead_end": entered_s, deepest_s, deepest_m, left_s, escape_s (null: never
+/// left), after_deepest_s.
 void writeExploreReport(const std::string& path, const std::string& world,
                         const std::vector<explore::ExplorationResult>& results,
                         const explore::ExplorationConfig& config, const Eigen::Vector3f& start_W,
                         unsigned long long seed,
-                        const std::optional<Eigen::AlignedBox2f>& dead_end_xy = std::nullopt);
+                        const std::optional<explore::DeadEnd>& dead_end = std::nullopt);
 
 /// Explored share vs simulated time, one line per run.
 void writeExploreCurvePng(const std::string& path, const std::string& world,

@@ -100,7 +100,7 @@ FixedPosition fixedPosition(const Eigen::Vector3f& p_W, float voxel_size_m) {
     const std::int64_t q = std::llround(g * double(1 << kFracBits));
     const std::int64_t voxel = q >> kFracBits;  // floor
     out.voxel[a] = static_cast<int>(voxel);
-    out.frac[a] = static_cast<int>(q - (voxel << kFracBits));
+    out.frac[a] = static_cast<int>(q - voxel * (std::int64_t{1} << kFracBits));
   }
   return out;
 }

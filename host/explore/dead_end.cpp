@@ -5,17 +5,20 @@
 
 namespace strata::explore {
 
+DeadEnd deadEndSeenFrom(const Eigen::AlignedBox2f& region_xy, const Eigen::Vector3f& start_W) {
+  return {region_xy, start_W.head<2>().cwiseMax(region_xy.min()).cwiseMin(region_xy.max())};
+}
+
 DeadEndEscape analyseDeadEnd(const std::vector<double>& times_s,
                              const std::vector<Eigen::Vector3f>& positions_W,
-                             const Eigen::AlignedBox2f& region_xy, const Eigen::Vector3f& start_W,
-                             double end_time_s) {
+                             const DeadEnd& dead_end, double end_time_s) {
+  const Eigen::AlignedBox2f& region_xy = dead_end.region_xy;
   if (times_s.size() != positions_W.size()) {
     throw InputError("dead end: " + std::to_string(times_s.size()) + " times for " +
                      std::to_string(positions_W.size()) + " positions");
   }
   if (region_xy.isEmpty()) throw InputError("dead end: the region is empty");
-  const Eigen::Vector2f mouth =
-      start_W.head<2>().cwiseMax(region_xy.min()).cwiseMin(region_xy.max());
+  const Eigen::Vector2f& mouth = dead_end.mouth_xy;
   DeadEndEscape e;
   for (std::size_t i = 0; i < positions_W.size(); ++i) {
     const Eigen::Vector2f p = positions_W[i].head<2>();

@@ -2,11 +2,12 @@
 // How fast a flown path leaves a dead end: a region (a corridor closed at one end, as a box from
 // above) the robot enters, follows to its deepest point and must leave the way it came.
 //
-// Depth of a position: its distance (x, y) from the mouth, the point of the region nearest the
-// start. The first visit: from the first position inside the region to the first position
-// outside it after that. Escape time: from reaching the deepest point of that visit (where the
-// dead end is used up) to leaving the region. Times are simulated seconds of the flown samples.
-// Thread safety: a plain function.
+// Depth of a position: its distance (x, y) from the mouth, where the dead end opens (by default
+// the point of the region nearest the start; a start inside the dead end needs it given). The first
+// visit: from the first position inside the region to the first position outside it after that.
+// Escape time: from reaching the deepest point of that visit (where the dead end is used up) to
+// leaving the region. Times are simulated seconds of the flown samples. Thread safety: a plain
+// function.
 #include <Eigen/Geometry>
 #include <optional>
 #include <vector>
@@ -27,12 +28,19 @@ struct DeadEndEscape {
   double after_deepest_s = 0.0;
 };
 
-/// `times_s[i]` is when the robot was at `positions_W[i]` (same length, increasing); `region_xy`
-/// the dead end from above (world x, y; metres); `start_W` the run's start. InputError when the
-/// lengths differ or the region is empty.
+/// A dead end from above (world x, y; metres).
+struct DeadEnd {
+  Eigen::AlignedBox2f region_xy;
+  Eigen::Vector2f mouth_xy = Eigen::Vector2f::Zero();  // where it opens; depth counts from here
+};
+
+/// The dead end `region_xy` opening at its point nearest `start_W` (a start outside it).
+DeadEnd deadEndSeenFrom(const Eigen::AlignedBox2f& region_xy, const Eigen::Vector3f& start_W);
+
+/// `times_s[i]` is when the robot was at `positions_W[i]` (same length, increasing); the run
+/// ended at `end_time_s`. InputError when the lengths differ or the region is empty.
 DeadEndEscape analyseDeadEnd(const std::vector<double>& times_s,
                              const std::vector<Eigen::Vector3f>& positions_W,
-                             const Eigen::AlignedBox2f& region_xy, const Eigen::Vector3f& start_W,
-                             double end_time_s);
+                             const DeadEnd& dead_end, double end_time_s);
 
 }  // namespace strata::explore

@@ -23,19 +23,25 @@ std::int64_t ticksOf(double period_s, double step_s) {
   return std::max<std::int64_t>(1, std::llround(period_s / step_s));
 }
 
-/// Contiguous stretches of samples closer to a surface than the radius.
-int countCollisions(const ExplorationTruth& truth, const std::vector<Eigen::Vector3f>& flown_W,
-                    float radius_m, float& min_clearance_m) {
-  int collisions = 0;
+/// Contiguous stretches of samples closer to a surface than the radius, each with its closest
+/// sample; the smallest clearance of all samples.
+std::vector<CollisionEvent> findCollisions(const ExplorationTruth& truth,
+                                           const std::vector<Eigen::Vector3f>& flown_W,
+                                           const std::vector<double>& flown_time_s, float radius_m,
+                                           float& min_clearance_m) {
+  std::vector<CollisionEvent> events;
   bool inside = false;
   min_clearance_m = std::numeric_limits<float>::infinity();
-  for (const Eigen::Vector3f& p : flown_W) {
-    const float d = truth.minClearance({p});
+  for (std::size_t i = 0; i < flown_W.size(); ++i) {
+    const float d = truth.minClearance({flown_W[i]});
     min_clearance_m = std::min(min_clearance_m, d);
-    if (d < radius_m && !inside) ++collisions;
+    if (d < radius_m) {
+      if (!inside) events.push_back({flown_time_s[i], flown_W[i], d});
+      if (d < events.back().clearance_m) events.back() = {flown_time_s[i], flown_W[i], d};
+    }
     inside = d < radius_m;
   }
-  return collisions;
+  return events;
 }
 
 }  // namespace
@@ -155,8 +161,9 @@ ExplorationResult ExplorationLoop::run(ExplorationPlanner& planner,
     result.sim_time_s = t + dt;
   }
   result.explored_fraction = result.curve.empty() ? 0.0 : result.curve.back().explored_fraction;
-  result.collisions =
-      countCollisions(truth_, result.flown_W, config_.robot.radius_m, result.min_clearance_m);
+  result.collision_events = findCollisions(truth_, result.flown_W, result.flown_time_s,
+                                           config_.robot.radius_m, result.min_clearance_m);
+  result.collisions = static_cast<int>(result.collision_events.size());
   result.wall_s = msSince(wall_start) / 1000.0;
   return result;
 }

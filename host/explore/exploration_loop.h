@@ -92,6 +92,14 @@ struct StepRecord {
   std::size_t gain_evaluations = 0;
 };
 
+/// The closest approach of one collision: a contiguous stretch of the flown path closer to the
+/// true geometry than the robot's radius.
+struct CollisionEvent {
+  double time_s = 0.0;  // simulated, of the closest sample
+  Eigen::Vector3f p_W = Eigen::Vector3f::Zero();
+  float clearance_m = 0.0f;  // true distance to the nearest surface there
+};
+
 struct ExplorationResult {
   std::string planner;
   std::vector<CurvePoint> curve;
@@ -103,6 +111,7 @@ struct ExplorationResult {
   double path_length_m = 0.0;
   /// Contiguous stretches of the flown path whose true clearance is below the robot's radius.
   int collisions = 0;
+  std::vector<CollisionEvent> collision_events;  // one per collision, in time order
   float min_clearance_m = 0.0f;
   double sim_time_s = 0.0;
   double wall_s = 0.0;

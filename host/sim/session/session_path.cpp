@@ -94,25 +94,28 @@ Eigen::Vector3d lookAtFrom(const WorldSpec& spec, const Eigen::Vector2d& p,
 /// a room whose centre lies behind), the two targets sat on opposite sides of the path, and the
 /// look-at spline between them passed through the camera: the view flipped by up to 180 degrees
 /// in a few milliseconds (tens of thousands of degrees per second in the office's sessions),
-/// which no camera does. The target keeps its distance and height; its bearing is clamped.
+/// which no camera does. A clamped target keeps its height and the previous target's distance
+/// (from above): a target that also jumped in distance (5 m behind to 11 m ahead at the dead-end
+/// world's junction) made the interpolated view swing faster than the clamp allows.
 void limitViewTurn(const Eigen::Vector2d& p, Eigen::Vector3d* target,
-                   std::optional<Eigen::Vector2d>* previous_view) {
+                   std::optional<Eigen::Vector2d>* previous_offset) {
   constexpr double kMaxViewTurn_rad = 45.0 * M_PI / 180.0;  // per 0.5 m of path
-  const Eigen::Vector2d offset = target->head<2>() - p;
+  Eigen::Vector2d offset = target->head<2>() - p;
   const double distance = offset.norm();
   if (distance < 1e-6) return;
-  Eigen::Vector2d view = offset / distance;
-  if (*previous_view) {
-    const Eigen::Vector2d& v0 = **previous_view;
+  if (*previous_offset && (*previous_offset)->norm() > 1e-6) {
+    const Eigen::Vector2d v0 = (*previous_offset)->normalized();
+    const Eigen::Vector2d view = offset / distance;
     const double turn = std::atan2(v0.x() * view.y() - v0.y() * view.x(), v0.dot(view));
     if (std::abs(turn) > kMaxViewTurn_rad) {
       const double a = std::copysign(kMaxViewTurn_rad, turn);
-      view = Eigen::Vector2d(std::cos(a) * v0.x() - std::sin(a) * v0.y(),
-                             std::sin(a) * v0.x() + std::cos(a) * v0.y());
-      target->head<2>() = p + distance * view;
+      const Eigen::Vector2d clamped(std::cos(a) * v0.x() - std::sin(a) * v0.y(),
+                                    std::sin(a) * v0.x() + std::cos(a) * v0.y());
+      offset = (*previous_offset)->norm() * clamped;
+      target->head<2>() = p + offset;
     }
   }
-  *previous_view = view;
+  *previous_offset = offset;
 }
 
 }  // namespace
@@ -152,12 +155,12 @@ std::vector<Waypoint> sessionWaypoints(const World& world, int session,
                      std::to_string(config.height_m) + " m height");
   }
   std::vector<Waypoint> waypoints;
-  std::optional<Eigen::Vector2d> previous_view;
+  std::optional<Eigen::Vector2d> previous_offset;
   for (std::size_t i = 0; i < points.size(); ++i) {
     const Eigen::Vector2d& p = points[i];
     const Eigen::Vector2d& ahead = points[std::min(i + 1, points.size() - 1)];
     Eigen::Vector3d target = lookAtFrom(spec, p, ahead);
-    limitViewTurn(p, &target, &previous_view);
+    limitViewTurn(p, &target, &previous_offset);
     waypoints.push_back({Eigen::Vector3d(p.x(), p.y(), config.height_m), target});
   }
   return waypoints;
