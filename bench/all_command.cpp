@@ -36,7 +36,8 @@ std::vector<Run> plannedRuns(const AllBenchOptions& o) {
                              "--prefill-blocks", std::to_string(prefill)});
     runs.push_back({"fuse_prefill_" + std::to_string(prefill), "fuse", args});
   }
-  for (const char* name : {"esdf", "diff", "select", "sim", "lcm", "occupancy", "objects"}) {
+  for (const char* name : {"esdf", "diff", "select", "sim", "lcm", "occupancy", "objects", "plan",
+                           "plan-collision", "explore-gain"}) {
     runs.push_back({name, name, {}});
   }
   return runs;
@@ -112,8 +113,9 @@ int runChecked(const AllBenchOptions& o) {
     std::vector<std::string> args = {run.benchmark};
     args.insert(args.end(), run.args.begin(), run.args.end());
     args.insert(args.end(), {"--out", report_path.string()});
-    // The simulator and the object database's matching run on the host only.
-    const bool host_only = run.benchmark == "sim" || run.benchmark == "objects";
+    // The simulator, the object database's matching and the graph planners run on the host.
+    const bool host_only =
+        run.benchmark == "sim" || run.benchmark == "objects" || run.benchmark == "plan";
     if (!o.device.empty() && !host_only) args.insert(args.end(), {"--device", o.device});
     std::fprintf(stderr, "strata-bench all: %s\n", commandLine(run).c_str());
     fs::remove(report_path, ec);  // a stale report must not pass for this run's

@@ -7,6 +7,7 @@
 #include <random>
 
 #include "core/error.h"
+#include "core/statistics.h"
 #include "explore/view_gain.h"
 #include "integrate/device_fusion.h"
 #include "json.h"
@@ -74,11 +75,6 @@ std::vector<Eigen::Vector3f> freePositions(const sim::World& world, std::size_t 
   }
   if (positions.size() < count) throw InputError("too few free positions in the world");
   return positions;
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0.0 : v[v.size() / 2];
 }
 
 bool sameGains(const std::vector<explore::ViewGain>& a, const std::vector<explore::ViewGain>& b) {

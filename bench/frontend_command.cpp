@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/statistics.h"
 #include "json.h"
 #include "machine_info.h"
 #include "odometry/frontend/feature_tracker.h"
@@ -79,18 +80,6 @@ struct Series {
     stereo_matched.push_back(f.stats.stereo_matched);
   }
 };
-
-double quantile(std::vector<double> v, double q) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v[static_cast<std::size_t>(q * (v.size() - 1))];
-}
-
-double mean(const std::vector<double>& v) {
-  double sum = 0.0;
-  for (double x : v) sum += x;
-  return v.empty() ? 0.0 : sum / v.size();
-}
 
 Json summary(const std::string& name, const Series& s) {
   std::fprintf(stderr,

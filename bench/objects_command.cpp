@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "core/error.h"
+#include "core/statistics.h"
 #include "json.h"
 #include "machine_info.h"
 #include "objects/object_database.h"
@@ -22,18 +23,11 @@ double msSince(Clock::time_point start) {
 
 constexpr int kMatchedShapes = 5;  // the queries are views of models 1..5, in every N >= 5
 
-double percentile(std::vector<double> values, double q) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  const std::size_t i = static_cast<std::size_t>(q * static_cast<double>(values.size() - 1) + 0.5);
-  return values[std::min(i, values.size() - 1)];
-}
-
 Json stats(const std::vector<double>& values) {
   return Json::object()
       .set("calls", static_cast<int>(values.size()))
       .set("median", median(values))
-      .set("p90", percentile(values, 0.9))
+      .set("p90", quantile(values, 0.9))
       .set("mean", mean(values));
 }
 
@@ -153,7 +147,7 @@ Json sizeJson(const SizeResult& r, int queries) {
       .set("skipped_segments", r.skipped)
       .set("ms_per_segment", Json::object()
                                  .set("median", median(r.ms))
-                                 .set("p90", percentile(r.ms, 0.9))
+                                 .set("p90", quantile(r.ms, 0.9))
                                  .set("mean", mean(r.ms)))
       .set("prefilter_candidates_mean", mean(r.candidates))
       .set("registrations_mean", mean(r.registrations))

@@ -5,6 +5,7 @@
 #include <random>
 
 #include "core/error.h"
+#include "core/statistics.h"
 #include "plan/planner_factory.h"
 
 namespace strata::bench {
@@ -67,18 +68,6 @@ PlannerRun runPlanner(const std::string& name, const EsdfMap& esdf, float radius
   }
   run.memory_bytes = planner->memoryBytes();
   return run;
-}
-
-double quantile(std::vector<double> values, double q) {
-  values.erase(
-      std::remove_if(values.begin(), values.end(), [](double v) { return !std::isfinite(v); }),
-      values.end());
-  if (values.empty()) return NAN;
-  std::sort(values.begin(), values.end());
-  const double at = q * static_cast<double>(values.size() - 1);
-  const auto lo = static_cast<std::size_t>(std::floor(at));
-  const std::size_t hi = std::min(values.size() - 1, lo + 1);
-  return values[lo] + (at - static_cast<double>(lo)) * (values[hi] - values[lo]);
 }
 
 Json plannerReport(const PlannerRun& run, const PlannerRun& reference) {

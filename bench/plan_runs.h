@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/statistics.h"  // quantile
 #include "json.h"
 #include "plan/collision_checker.h"
 #include "plan/traversability.h"
@@ -39,8 +40,5 @@ PlannerRun runPlanner(const std::string& name, const EsdfMap& esdf, float radius
 
 /// Per-planner summary; ratios against `reference` (grid A*) on the pairs both solved.
 Json plannerReport(const PlannerRun& run, const PlannerRun& reference);
-
-/// Quantile q in [0, 1] of `values` (linear between order statistics); NaN when empty.
-double quantile(std::vector<double> values, double q);
 
 }  // namespace strata::bench

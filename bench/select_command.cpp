@@ -6,8 +6,9 @@
 #include <cstdio>
 
 #include "core/error.h"
-#include "json.h"
+#include "core/statistics.h"
 #include "integrate/device_fusion.h"
+#include "json.h"
 #include "machine_info.h"
 #include "select/keyframe_scorer.h"
 #include "sim/session/sim_session.h"
@@ -55,17 +56,6 @@ Scene makeScene(const SelectBenchOptions& o) {
     s.fusion->integrate(s.map_session->load(i), s.map_session->intrinsics());
   }
   return s;
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0.0 : v[v.size() / 2];
-}
-
-double mean(const std::vector<double>& v) {
-  double sum = 0.0;
-  for (double x : v) sum += x;
-  return v.empty() ? 0.0 : sum / v.size();
 }
 
 Json runStride(Scene& s, const std::vector<RgbdFrame>& frames, int stride, bool* ok) {

@@ -1,27 +1,16 @@
 #pragma once
 // Summary statistics of per-frame measurements.
-#include <algorithm>
 #include <cstddef>
-#include <numeric>
 #include <vector>
 
+#include "core/statistics.h"
 #include "json.h"
 
 namespace strata::bench {
 
-inline double mean(const std::vector<double>& values) {
-  if (values.empty()) return 0.0;
-  return std::accumulate(values.begin(), values.end(), 0.0) / static_cast<double>(values.size());
-}
-
-inline double median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  const std::size_t mid = values.size() / 2;
-  std::nth_element(values.begin(), values.begin() + mid, values.end());
-  const double upper = values[mid];
-  if (values.size() % 2 == 1) return upper;
-  return 0.5 * (upper + *std::max_element(values.begin(), values.begin() + mid));
-}
+// NaN (written as null) for no values.
+using ::strata::mean;
+using ::strata::median;
 
 /// {"mean": .., "median": ..}
 inline Json meanMedian(const std::vector<double>& values) {

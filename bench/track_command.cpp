@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "core/error.h"
+#include "core/statistics.h"
 #include "json.h"
 #include "machine_info.h"
 #include "mapper/mapper.h"
@@ -22,18 +23,6 @@ constexpr double kSelfCheckAte_m = 0.03;
 
 std::string defaultDataDir() {
   return std::filesystem::path(STRATA_SHARED_DATA_DIR "/redkitchen").lexically_normal().string();
-}
-
-double mean(const std::vector<double>& v) {
-  double sum = 0.0;
-  for (double x : v) sum += x;
-  return v.empty() ? 0.0 : sum / static_cast<double>(v.size());
-}
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
 }
 
 traj::TrajectoryError ate(const PreloadedFrames& data,
@@ -124,8 +113,9 @@ int runChecked(TrackBenchOptions options) {
   const traj::TrajectoryError strata_error = ate(data, strata.T_W_C, strata.fused);
   const double strata_ms = mean(strata.track_ms);
   Json strata_json = Json::object()
-                         .set("method", "frame-to-model point-to-plane ICP on the TSDF raycast, "
-                                        "3-level pyramid, then fusion (docs/track.md)")
+                         .set("method",
+                              "frame-to-model point-to-plane ICP on the TSDF raycast, "
+                              "3-level pyramid, then fusion (docs/track.md)")
                          .set("levels", config.track.levels)
                          .set("model_level", config.track.model_level)
                          .set("lost_frames", strata.lost)
@@ -147,32 +137,31 @@ int runChecked(TrackBenchOptions options) {
     const traj::TrajectoryError peer_error =
         ate(data, peer.T_W_C, std::vector<bool>(data.frames.size(), true));
     const double peer_ms = mean(peer.ms);
-    peer_json = Json::object()
-                    .set("peer", peer.peer)
-                    .set("method", peer.method)
-                    .set("threads", peer.threads)
-                    .set("failed_calls", peer.failures)
-                    .set("ms_per_frame_mean", peer_ms)
-                    .set("ms_per_frame_median", median(peer.ms))
-                    .set("ate", ateJson(data, peer.T_W_C,
-                                        std::vector<bool>(data.frames.size(), true)));
+    peer_json =
+        Json::object()
+            .set("peer", peer.peer)
+            .set("method", peer.method)
+            .set("threads", peer.threads)
+            .set("failed_calls", peer.failures)
+            .set("ms_per_frame_mean", peer_ms)
+            .set("ms_per_frame_median", median(peer.ms))
+            .set("ate", ateJson(data, peer.T_W_C, std::vector<bool>(data.frames.size(), true)));
     ratios = Json::object()
                  .set("ate_strata_over_peer", strata_error.ate_rmse_m / peer_error.ate_rmse_m)
                  .set("tracking_ms_strata_over_peer", strata_ms / peer_ms);
   }
   const bool ok = strata_error.ate_rmse_m <= kSelfCheckAte_m;
-  Json report = Json::object()
-                    .set("benchmark", "track")
-                    .set("machine", machineInfo(strata.device, load_at_start))
-                    .set("data", options.data_dir)
-                    .set("frames", data.frames.size())
-                    .set("first_pose", "the dataset's first pose (ATE is SE(3)-aligned anyway)")
-                    .set("strata", strata_json)
-                    .set("open3d", peer_json)
-                    .set("ratios", ratios)
-                    .set("self_check", Json::object()
-                                           .set("ate_bound_m", kSelfCheckAte_m)
-                                           .set("passed", ok));
+  Json report =
+      Json::object()
+          .set("benchmark", "track")
+          .set("machine", machineInfo(strata.device, load_at_start))
+          .set("data", options.data_dir)
+          .set("frames", data.frames.size())
+          .set("first_pose", "the dataset's first pose (ATE is SE(3)-aligned anyway)")
+          .set("strata", strata_json)
+          .set("open3d", peer_json)
+          .set("ratios", ratios)
+          .set("self_check", Json::object().set("ate_bound_m", kSelfCheckAte_m).set("passed", ok));
   emitReport(report, options.out_path);
   return ok ? 0 : 1;
 }
@@ -189,8 +178,9 @@ CLI::App* addTrackCommand(CLI::App& app, TrackBenchOptions& o) {
   track->add_option("--device", o.device, "Vulkan device index or name substring");
   track->add_option("--model-level", o.model_level,
                     "Pyramid level the model is raycast at (default: TrackConfig's)");
-  track->add_option("--iterations", o.iterations,
-                    "Gauss-Newton iterations per level, coarsest first (sets the level count)")
+  track
+      ->add_option("--iterations", o.iterations,
+                   "Gauss-Newton iterations per level, coarsest first (sets the level count)")
       ->delimiter(',');
   return track;
 }

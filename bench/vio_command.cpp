@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/statistics.h"
 #include "json.h"
 #include "machine_info.h"
 #include "odometry/synthetic/vio_scenario.h"
@@ -65,11 +66,6 @@ RunResult runOnce(const odometry::synthetic::Scenario& s, const odometry::VioCon
     r.error.ate_rmse_m = 1e9;
   }
   return r;
-}
-
-double percentile(std::vector<double> v, double p) {
-  std::sort(v.begin(), v.end());
-  return v[static_cast<std::size_t>(p * static_cast<double>(v.size() - 1))];
 }
 
 }  // namespace
@@ -143,12 +139,12 @@ int runVioBench(const VioBenchOptions& o) {
                      .set("rpe_rot_deg_per_m", best.error.rpe_rot_deg_per_m)
                      .set("path_length_m", best.error.path_length_m)
                      .set("frame_cpu_ms_mean", mean_cpu_ms)
-                     .set("frame_cpu_ms_p95", percentile(best.frame_cpu_ms, 0.95))
-                     .set("frame_cpu_ms_max", percentile(best.frame_cpu_ms, 1.0))
+                     .set("frame_cpu_ms_p95", quantile(best.frame_cpu_ms, 0.95))
+                     .set("frame_cpu_ms_max", quantile(best.frame_cpu_ms, 1.0))
                      .set("frame_ms_mean", mean_ms)
-                     .set("frame_ms_p50", percentile(best.frame_ms, 0.5))
-                     .set("frame_ms_p95", percentile(best.frame_ms, 0.95))
-                     .set("frame_ms_max", percentile(best.frame_ms, 1.0))
+                     .set("frame_ms_p50", quantile(best.frame_ms, 0.5))
+                     .set("frame_ms_p95", quantile(best.frame_ms, 0.95))
+                     .set("frame_ms_max", quantile(best.frame_ms, 1.0))
                      .set("cpu_share_of_20hz_period", mean_cpu_ms / (1e3 * kFramePeriodS)))
             .set("checks_passed", ok);
     emitReport(report, o.out_path);

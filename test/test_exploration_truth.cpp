@@ -134,7 +134,7 @@ TEST(ExplorationTruth, TheDeadEndCorridorIsReachedThroughTheJunctionOnly) {
   const sim::World world = sim::World::load(sim::findWorld("deadend"));
   const auto scene = world.buildScene(0);
   const double voxel_m = 0.1;
-  // The scenario's start, at the junction (worlds/deadend.yaml).
+  // A start in the hall at the junction (worlds/deadend.yaml).
   const ReachableSpace space =
       computeReachableSpace(*scene, world.bounds(), {9.0, 4.0, 1.2}, voxel_m);
   // The bounds hold the air outside the building beside the corridor: free but unreachable.

@@ -8,6 +8,7 @@
 #include "cli/esdf_slice.h"
 #include "core/atomic_file.h"
 #include "core/json_text.h"
+#include "core/statistics.h"
 #include "explore/dead_end.h"
 
 namespace strata::apps {
@@ -15,15 +16,6 @@ namespace {
 
 void writeText(const std::string& path, const std::string& text) {
   writeFileAtomically(path, std::vector<std::uint8_t>(text.begin(), text.end()));
-}
-
-double percentile(std::vector<double> values, double q) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  const double pos = q * static_cast<double>(values.size() - 1);
-  const std::size_t lo = static_cast<std::size_t>(std::floor(pos));
-  const std::size_t hi = std::min(values.size() - 1, lo + 1);
-  return values[lo] + (pos - static_cast<double>(lo)) * (values[hi] - values[lo]);
 }
 
 std::string optionalNumber(const std::optional<double>& value) {
@@ -110,7 +102,7 @@ void writeExploreStepsCsv(const std::string& path, const explore::ExplorationRes
 StepTimes stepTimes(const explore::ExplorationResult& result) {
   std::vector<double> ms;
   for (const explore::StepRecord& s : result.steps) ms.push_back(s.compute_ms);
-  return {percentile(ms, 0.5), percentile(ms, 0.95)};
+  return {quantile(ms, 0.5), quantile(ms, 0.95)};
 }
 
 double timeToFraction(const explore::ExplorationResult& result, double fraction) {
