@@ -75,20 +75,34 @@ explore::ExplorationConfig loopConfig(const ExploreOptions& o) {
   c.camera_width_px = o.camera_width_px;
   c.camera_height_px = o.camera_height_px;
   c.eval_period_s = o.eval_period_s;
+  c.surface_hits = !o.no_surface_hits;
   c.seed = o.seed;
   c.validate();
   return c;
 }
 
+/// The local tree's sampling box (half extents, metres): `--tree-box`, else the planners' default.
+std::optional<Eigen::Vector3f> parseTreeBox(const std::string& text) {
+  if (text.empty()) return std::nullopt;
+  const std::vector<float> v = parseNumbers(text, 3, "--tree-box", "X,Y,Z half extents > 0 m");
+  if (!(v[0] > 0.0f && v[1] > 0.0f && v[2] > 0.0f)) {
+    throw InputError("--tree-box: expected X,Y,Z half extents > 0 m, got '" + text + "'");
+  }
+  return Eigen::Vector3f(v[0], v[1], v[2]);
+}
+
 std::unique_ptr<explore::ExplorationPlanner> makePlanner(const std::string& name,
-                                                         unsigned long long seed) {
+                                                         const ExploreOptions& o) {
+  const std::optional<Eigen::Vector3f> box = parseTreeBox(o.tree_box);
   if (name == "history") {
     explore::HistoryConfig c;
-    c.seed = seed;
+    c.seed = o.seed;
+    if (box) c.tree.half_extent_m = *box;
     return std::make_unique<explore::HistoryPlanner>(c);
   }
   explore::NbvpConfig c;
-  c.seed = seed;
+  c.seed = o.seed;
+  if (box) c.tree.half_extent_m = *box;
   return std::make_unique<explore::NbvpPlanner>(c);
 }
 
@@ -107,7 +121,7 @@ explore::ExplorationResult runOne(const std::string& name, const ExploreOptions&
                                   const Eigen::Vector3f& start, vk::Context& context) {
   const float start_yaw_rad = static_cast<float>(o.start_yaw_deg * M_PI / 180.0);
   explore::ExplorationLoop loop(world, truth, config, {start, start_yaw_rad}, context);
-  auto planner = makePlanner(name, o.seed);
+  auto planner = makePlanner(name, o);
   explore::ExplorationResult result =
       loop.run(*planner, [&](const explore::CurvePoint& p, const explore::StepRecord* last) {
         if (!o.quiet) printProgress(name, p, last);
@@ -140,6 +154,7 @@ int runChecked(const ExploreOptions& o) {
     throw InputError("--planner must be history or nbvp, got '" + o.planner + "'");
   }
   const explore::ExplorationConfig config = loopConfig(o);
+  parseTreeBox(o.tree_box);  // bad input stops before any work
   const auto world = loadWorld(o.world_path, 0, 1);
   const Eigen::Vector3f start = o.start.empty()
                                     ? explore::defaultStart(*world, kDefaultStartHeightM, config)
@@ -189,6 +204,11 @@ CLI::App* addExploreCommand(CLI::App& app, ExploreOptions& o) {
                   "each planner took to leave it (worlds/deadend.yaml: 10.1,3,32.1,5)");
   cmd->add_option("--dead-end-mouth", o.dead_end_mouth,
                   "X,Y: where the dead end opens (metres); default: its point nearest the start");
+  cmd->add_flag("--no-surface-hits", o.no_surface_hits,
+                "Check paths against the ESDF alone, without depth endpoints as obstacles");
+  cmd->add_option("--tree-box", o.tree_box,
+                  "X,Y,Z: half extents of the local tree's sampling box around the robot, metres "
+                  "(default 4,4,0.6)");
   cmd->add_option("--width", o.camera_width_px, "Camera width, px")->capture_default_str();
   cmd->add_option("--height", o.camera_height_px, "Camera height, px")->capture_default_str();
   cmd->add_option("--eval-period", o.eval_period_s,

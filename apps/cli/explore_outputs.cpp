@@ -59,6 +59,8 @@ std::string runJson(const explore::ExplorationResult& r, const std::string& dead
     << ", \"collisions\": " << r.collisions << ", \"collision_events\": [" << collisionEventsJson(r)
     << "]"
     << ", \"min_clearance_m\": " << jsonNumber(r.min_clearance_m)
+    << ", \"hit_obstacles\": " << r.hit_obstacles
+    << ", \"spheres_refused_by_hits\": " << r.spheres_refused_by_hits
     << ", \"path_length_m\": " << jsonNumber(r.path_length_m)
     << ", \"step_ms_median\": " << jsonNumber(times.median_ms)
     << ", \"step_ms_p95\": " << jsonNumber(times.p95_ms) << ", \"steps\": " << r.steps.size()

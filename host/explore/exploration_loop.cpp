@@ -53,6 +53,9 @@ void ExplorationLoop::fuseFrame(double sim_time_s, std::uint64_t index) {
   const RgbdFrame rgbd =
       sim::makeRgbdFrame(std::move(frame), T_W_C, sim_time_s, "explore-" + std::to_string(index));
   mapper_->integrate(rgbd, impl_->camera.config().intrinsics);
+  if (config_.surface_hits) {
+    impl_->hits.addFrame(rgbd.depth, impl_->camera.config().intrinsics, rgbd.T_W_C);
+  }
 }
 
 ExplorationResult ExplorationLoop::run(ExplorationPlanner& planner,
@@ -126,6 +129,12 @@ ExplorationResult ExplorationLoop::run(ExplorationPlanner& planner,
       state.sim_time_s = t;
       state.pose = follower.pose();
       state.checker = impl_->checker.get();
+      if (config_.surface_hits) {
+        if (!impl_->guarded) {
+          impl_->guarded = std::make_unique<HitGuardedChecker>(*impl_->checker, impl_->hits);
+        }
+        state.checker = impl_->guarded.get();
+      }
       const Clock::time_point plan_start = Clock::now();
       const ExplorationStep step = planner.plan(state);
       record.compute_ms = msSince(plan_start);
@@ -164,6 +173,8 @@ ExplorationResult ExplorationLoop::run(ExplorationPlanner& planner,
   result.collision_events = findCollisions(truth_, result.flown_W, result.flown_time_s,
                                            config_.robot.radius_m, result.min_clearance_m);
   result.collisions = static_cast<int>(result.collision_events.size());
+  result.hit_obstacles = impl_->hits.obstacleCount();
+  result.spheres_refused_by_hits = impl_->guarded ? impl_->guarded->refusedByHits() : 0;
   result.wall_s = msSince(wall_start) / 1000.0;
   return result;
 }

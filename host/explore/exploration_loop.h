@@ -61,6 +61,9 @@ struct ExplorationConfig {
   /// margin) only from about (radius + margin) / tan(vertical fov / 2) ~ 0.92 m away.
   float start_clearing_radius_m = 1.0f;
   float start_clearing_half_height_m = 0.45f;
+  /// Depth endpoints seen in 3 frames also block the planners' checks (surface_hits.h): thin
+  /// parts (2.5 cm shelf boards) that the TSDF at 10 cm loses. false: the ESDF alone.
+  bool surface_hits = true;
   /// Steps in a row with nothing to fly before the run stops ("stuck").
   int max_idle_steps = 10;
   /// The gain model of both planners: 10-degree bins, 8 elevation rays (coarser than the
@@ -112,6 +115,10 @@ struct ExplorationResult {
   /// Contiguous stretches of the flown path whose true clearance is below the robot's radius.
   int collisions = 0;
   std::vector<CollisionEvent> collision_events;  // one per collision, in time order
+  /// Surface hits (ExplorationConfig::surface_hits): obstacle points at the end, and sphere
+  /// tests the ESDF passed but the hits refused.
+  std::size_t hit_obstacles = 0;
+  std::uint64_t spheres_refused_by_hits = 0;
   float min_clearance_m = 0.0f;
   double sim_time_s = 0.0;
   double wall_s = 0.0;

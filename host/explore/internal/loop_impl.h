@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "explore/exploration_loop.h"
+#include "explore/surface_hits.h"
 #include "plan/collision_checker.h"
 #include "sim/sensors/rgbd_camera.h"
 
@@ -26,6 +27,8 @@ struct ExplorationLoop::Impl {
   PathFollower follower;
   ViewGainKernel gain;
   std::unique_ptr<plan::DeviceCollisionChecker> checker;  // after the first ESDF update
+  SurfaceHits hits;
+  std::unique_ptr<HitGuardedChecker> guarded;  // checker AND hits, with config.surface_hits
 };
 
 }  // namespace strata::explore

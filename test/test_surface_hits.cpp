@@ -1,0 +1,132 @@
+// Depth endpoints as obstacles (explore/surface_hits.h): votes per frame, the back-projection of
+// a depth frame, and the guarded collision checker on top of another checker.
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "explore/surface_hits.h"
+
+namespace strata::explore {
+namespace {
+
+/// Points 1 cm apart on a board 2.5 cm thick and 1 m wide at x in [-0.5, 0.5], y = 1 (its front
+/// edge faces -y), z in [1.0, 1.025]: thinner than the voxels that would map it.
+std::vector<Eigen::Vector3f> boardEdge() {
+  std::vector<Eigen::Vector3f> points;
+  for (int i = 0; i <= 100; ++i) {
+    for (int k = 0; k <= 2; ++k) {
+      points.emplace_back(-0.5f + 0.01f * static_cast<float>(i), 1.0f,
+                          1.0f + 0.0125f * static_cast<float>(k));
+    }
+  }
+  return points;
+}
+
+TEST(SurfaceHits, AVoxelBlocksOnceSeenInEnoughFrames) {
+  SurfaceHits hits;                                  // 5 cm voxels, 3 frames
+  const Eigen::Vector3f in_front(0.0f, 0.7f, 1.0f);  // 0.3 m in front of the edge
+  for (int frame = 0; frame < 2; ++frame) {
+    hits.addPoints(boardEdge());
+    EXPECT_EQ(hits.obstacleCount(), 0u);
+    EXPECT_FALSE(hits.blocks(in_front, 0.4f));
+  }
+  hits.addPoints(boardEdge());
+  EXPECT_GT(hits.obstacleCount(), 0u);
+  EXPECT_TRUE(hits.blocks(in_front, 0.4f));
+  EXPECT_FALSE(hits.blocks(in_front, 0.25f));                          // 0.3 m away
+  EXPECT_FALSE(hits.blocks(Eigen::Vector3f(0.0f, 1.0f, 1.5f), 0.4f));  // 0.475 m above
+  EXPECT_TRUE(hits.blocks(Eigen::Vector3f(0.9f, 1.0f, 1.0f), 0.45f));  // beyond the end
+}
+
+TEST(SurfaceHits, OnePointPerFrameInOneVoxelIsOneVote) {
+  SurfaceHits hits;
+  // Many endpoints of one frame in one voxel, and scattered "flying pixels" that never land in
+  // the same voxel twice: neither makes an obstacle.
+  std::vector<Eigen::Vector3f> dense(50, Eigen::Vector3f(2.01f, 2.01f, 1.01f));
+  hits.addPoints(dense);
+  hits.addPoints(dense);
+  for (int frame = 0; frame < 10; ++frame) {
+    hits.addPoints({Eigen::Vector3f(0.1f * static_cast<float>(frame), 3.0f, 1.0f)});
+  }
+  EXPECT_EQ(hits.obstacleCount(), 0u);
+  hits.addPoints(dense);  // third frame
+  EXPECT_EQ(hits.obstacleCount(), 1u);
+  // The obstacle is the mean of its endpoints, not the voxel centre (2.025, 2.025, 1.025).
+  EXPECT_TRUE(hits.blocks(Eigen::Vector3f(2.01f, 2.01f, 1.51f), 0.5001f));
+  EXPECT_FALSE(hits.blocks(Eigen::Vector3f(2.01f, 2.01f, 1.51f), 0.4999f));
+}
+
+TEST(SurfaceHits, DepthFramesBackProjectThroughTheCamera) {
+  CameraIntrinsics k;
+  k.width_px = 40;
+  k.height_px = 30;
+  k.fx_px = k.fy_px = 40.0f;
+  k.cx_px = 19.5f;
+  k.cy_px = 14.5f;
+  DepthImage wall(40, 30, 2.0f);  // a wall 2 m ahead of the camera
+  wall.at(0, 0) = std::numeric_limits<float>::quiet_NaN();
+  wall.at(1, 0) = 0.0f;
+  wall.at(2, 0) = 9.0f;  // beyond max_depth_m: not used
+  // Camera at (1, 0, 1) looking along world +x (optical z = world x, optical x = world -y,
+  // optical y = world -z).
+  Eigen::Isometry3d T_W_C = Eigen::Isometry3d::Identity();
+  T_W_C.linear() << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  T_W_C.translation() = Eigen::Vector3d(1.0, 0.0, 1.0);
+  SurfaceHits hits;
+  for (int frame = 0; frame < 3; ++frame) hits.addFrame(wall, k, T_W_C);
+  EXPECT_GT(hits.obstacleCount(), 100u);
+  EXPECT_TRUE(hits.blocks(Eigen::Vector3f(2.7f, 0.0f, 1.0f), 0.35f));   // the wall is at x = 3
+  EXPECT_FALSE(hits.blocks(Eigen::Vector3f(2.6f, 0.0f, 1.0f), 0.35f));  // 0.4 m from it
+  EXPECT_THROW(hits.addFrame(DepthImage(20, 30, 2.0f), k, T_W_C), InputError);
+}
+
+/// Every sphere is free and the ESDF reads 1 m everywhere.
+class OpenSpaceChecker final : public plan::CollisionChecker {
+ public:
+  std::vector<std::uint8_t> spheresFree(const std::vector<Eigen::Vector3f>& centres_W, float,
+                                        UnknownPolicy) override {
+    return std::vector<std::uint8_t>(centres_W.size(), 1);
+  }
+  std::vector<EsdfSample> sample(const std::vector<Eigen::Vector3f>& points_W) override {
+    EsdfSample s;
+    s.distance_m = 1.0f;
+    return std::vector<EsdfSample>(points_W.size(), s);
+  }
+  float voxelSize() const override { return 0.1f; }
+  float maxDistance() const override { return 2.0f; }
+};
+
+TEST(HitGuardedChecker, RefusesWhatTheHitsBlockAndPassesTheRest) {
+  SurfaceHits hits;
+  for (int frame = 0; frame < 3; ++frame) hits.addPoints(boardEdge());
+  OpenSpaceChecker open;
+  HitGuardedChecker guarded(open, hits);
+  const std::vector<std::uint8_t> free =
+      guarded.spheresFree({Eigen::Vector3f(0.0f, 0.7f, 1.0f), Eigen::Vector3f(0.0f, 0.0f, 1.0f)},
+                          0.4f, UnknownPolicy::kOccupied);
+  EXPECT_EQ(free, (std::vector<std::uint8_t>{0, 1}));
+  EXPECT_EQ(guarded.refusedByHits(), 1u);
+  // A segment through the board's edge is refused, one beside it is not.
+  EXPECT_FALSE(guarded.segmentFree(Eigen::Vector3f(-1.0f, 0.8f, 1.0f),
+                                   Eigen::Vector3f(1.0f, 0.8f, 1.0f), 0.3f,
+                                   UnknownPolicy::kOccupied));
+  EXPECT_TRUE(guarded.segmentFree(Eigen::Vector3f(-1.0f, 0.2f, 1.0f),
+                                  Eigen::Vector3f(1.0f, 0.2f, 1.0f), 0.3f,
+                                  UnknownPolicy::kOccupied));
+  EXPECT_FLOAT_EQ(guarded.sample({Eigen::Vector3f::Zero()})[0].distance_m, 1.0f);
+  EXPECT_FLOAT_EQ(guarded.voxelSize(), 0.1f);
+}
+
+TEST(SurfaceHits, BadConfigIsAnInputError) {
+  SurfaceHitsConfig c;
+  c.voxel_size_m = 0.0f;
+  EXPECT_THROW(SurfaceHits{c}, InputError);
+  c = {};
+  c.min_frames = 0;
+  EXPECT_THROW(SurfaceHits{c}, InputError);
+  c = {};
+  c.pixel_stride = 0;
+  EXPECT_THROW(SurfaceHits{c}, InputError);
+}
+
+}  // namespace
+}  // namespace strata::explore
