@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <limits>
 
 #include "cli/explore_command.h"
 #include "explore/exploration_loop.h"
@@ -81,6 +82,24 @@ TEST(ExploreCommand, BadInputIsAnInputError) {
   EXPECT_EQ(apps::runExplore(o), 2);
   o.planner = "history";
   o.voxel_size_m = -0.1f;
+  EXPECT_EQ(apps::runExplore(o), 2);
+  o.voxel_size_m = 0.1f;
+  o.tree_box = "4,4,0";  // a flat box
+  EXPECT_EQ(apps::runExplore(o), 2);
+  o.tree_box = "4,4";
+  EXPECT_EQ(apps::runExplore(o), 2);
+  o.tree_box.clear();
+  o.start_yaw_deg = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(apps::runExplore(o), 2);
+  o.start_yaw_deg = 0.0;
+  o.dead_end_mouth = "10,4";  // a mouth without a dead end
+  EXPECT_EQ(apps::runExplore(o), 2);
+  o.dead_end = "5,5,1,1";  // X0 > X1
+  EXPECT_EQ(apps::runExplore(o), 2);
+  o.dead_end = "1,1,9,7";  // holds the default start: where does it open?
+  o.dead_end_mouth.clear();
+  EXPECT_EQ(apps::runExplore(o), 2);
+  o.dead_end_mouth = "1,x";
   EXPECT_EQ(apps::runExplore(o), 2);
 }
 

@@ -61,7 +61,7 @@ struct ExplorationConfig {
   /// margin) only from about (radius + margin) / tan(vertical fov / 2) ~ 0.92 m away.
   float start_clearing_radius_m = 1.0f;
   float start_clearing_half_height_m = 0.45f;
-  /// Depth endpoints seen in 3 frames also block the planners' checks (surface_hits.h): thin
+  /// Depth endpoints seen from 3 places also block the planners' checks (surface_hits.h): thin
   /// parts (2.5 cm shelf boards) that the TSDF at 10 cm loses. false: the ESDF alone.
   bool surface_hits = true;
   /// Steps in a row with nothing to fly before the run stops ("stuck").

@@ -29,8 +29,12 @@ SurfaceHits::SurfaceHits(const SurfaceHitsConfig& config) : config_(config) {
       !(config.max_depth_m > 0.0f)) {
     throw InputError("SurfaceHitsConfig: voxel_size_m, cell_size_m and max_depth_m must be > 0");
   }
-  if (config.min_frames < 1 || config.pixel_stride < 1) {
-    throw InputError("SurfaceHitsConfig: min_frames and pixel_stride must be >= 1");
+  if (config.min_views < 1 || config.min_views > kMaxViews || config.pixel_stride < 1) {
+    throw InputError("SurfaceHitsConfig: min_views must be in [1, " + std::to_string(kMaxViews) +
+                     "] and pixel_stride >= 1");
+  }
+  if (!(config.min_baseline_m >= 0.0f) || !(config.edge_jump_m > 0.0f)) {
+    throw InputError("SurfaceHitsConfig: min_baseline_m must be >= 0 and edge_jump_m > 0");
   }
 }
 
@@ -43,32 +47,50 @@ void SurfaceHits::addFrame(const DepthImage& depth, const CameraIntrinsics& intr
                      std::to_string(intrinsics.height_px));
   }
   const Eigen::Isometry3f T = T_W_C.cast<float>();
+  const int w = depth.width_px, h = depth.height_px;
+  auto onEdge = [&](int u, int v, float z) {
+    const int du[4] = {-1, 1, 0, 0}, dv[4] = {0, 0, -1, 1};
+    for (int i = 0; i < 4; ++i) {
+      const int un = u + du[i], vn = v + dv[i];
+      if (un < 0 || vn < 0 || un >= w || vn >= h) continue;
+      const float zn = depth.at(un, vn);
+      if (zn > 0.0f && std::abs(zn - z) > config_.edge_jump_m) return true;
+    }
+    return false;
+  };
   std::vector<Eigen::Vector3f> points_W;
-  for (int v = 0; v < depth.height_px; v += config_.pixel_stride) {
-    for (int u = 0; u < depth.width_px; u += config_.pixel_stride) {
+  for (int v = 0; v < h; v += config_.pixel_stride) {
+    for (int u = 0; u < w; u += config_.pixel_stride) {
       const float z = depth.at(u, v);
-      if (!(z > 0.0f) || !(z <= config_.max_depth_m)) continue;  // also NaN
+      if (!(z > 0.0f) || !(z <= config_.max_depth_m) || onEdge(u, v, z)) continue;  // also NaN
       const Eigen::Vector3f p_C((static_cast<float>(u) - intrinsics.cx_px) * z / intrinsics.fx_px,
                                 (static_cast<float>(v) - intrinsics.cy_px) * z / intrinsics.fy_px,
                                 z);
       points_W.push_back(T * p_C);
     }
   }
-  addPoints(points_W);
+  addPoints(points_W, T.translation());
 }
 
-void SurfaceHits::addPoints(const std::vector<Eigen::Vector3f>& points_W) {
-  const std::int64_t frame = frame_++;
+void SurfaceHits::addPoints(const std::vector<Eigen::Vector3f>& points_W,
+                            const Eigen::Vector3f& camera_W) {
+  const float baseline2 = config_.min_baseline_m * config_.min_baseline_m;
   for (const Eigen::Vector3f& p : points_W) {
     if (!p.allFinite()) continue;
     const Eigen::Vector3i voxel = cellOf(p, config_.voxel_size_m);
     VoxelHits& hits = voxels_[packKey(voxel)];
+    if (hits.views >= config_.min_views) continue;  // already an obstacle
     hits.sum_W += p;
     ++hits.points;
-    if (hits.last_frame == frame) continue;  // one vote per frame
-    hits.last_frame = frame;
-    if (++hits.frames == config_.min_frames)
-      addObstacle(hits.sum_W / static_cast<float>(hits.points));
+    bool new_view = true;
+    for (int i = 0; i < hits.views; ++i) {
+      if ((hits.views_W[static_cast<std::size_t>(i)] - camera_W).squaredNorm() < baseline2) {
+        new_view = false;
+      }
+    }
+    if (!new_view) continue;
+    hits.views_W[static_cast<std::size_t>(hits.views++)] = camera_W;
+    if (hits.views == config_.min_views) addObstacle(hits.sum_W / static_cast<float>(hits.points));
   }
 }
 

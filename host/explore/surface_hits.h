@@ -8,15 +8,23 @@
 // The depth endpoints on the board stay: every endpoint is a point on a surface (up to noise).
 //
 // What: endpoints are binned in voxels of `voxel_size_m`; a voxel becomes an obstacle once
-// endpoints fell in it in `min_frames` different frames (a flying pixel at a depth edge lands at
-// a random depth between the two surfaces, so it rarely hits one voxel again). Obstacles are
-// never removed: for static worlds (exploration), not for scenes that change. An obstacle is the
-// mean of the voxel's endpoints when it became one (on the surface up to the depth noise, where a
-// voxel centre could lie half a diagonal off); a sphere is blocked when an obstacle lies within
-// its radius.
+// endpoints fell in it from `min_views` camera positions at least `min_baseline_m` apart. Flying
+// pixels (a depth between the two surfaces of an edge, along the edge pixel's ray) are what this
+// must not keep: a robot turning in place sees the same edge along the same ray frame after frame
+// and piles such points into the same voxels (5 cm runs counting frames instead of places closed
+// the office's 0.9 m doors), while from another place the ray, and so the flying points, move and
+// only real surfaces stay. Pixels on a depth edge (a 4-neighbour more than `edge_jump_m` nearer or
+// farther) are not used at all: a flying point passes only at jumps under twice that (never at
+// a door frame with a room behind it), while a surface seen at a grazing angle, which changes
+// depth fast from pixel to pixel (a board's top from 0.2 m above at 2 m: ~0.28 m per pixel of
+// the 160 px camera), stays; with 5 cm it went and the boards with it. Obstacles are never removed:
+// for static worlds (exploration), not for scenes that change. An obstacle is the mean of the
+// voxel's endpoints when it became one (on the surface up to the depth noise, where a voxel centre
+// could lie half a diagonal off); a sphere is blocked when an obstacle lies within its radius.
 // Frames: world, metres. Thread safety: not thread safe.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <array>
 #include <cstdint>
 #include <unordered_map>
 #include <vector>
@@ -28,7 +36,11 @@ namespace strata::explore {
 
 struct SurfaceHitsConfig {
   float voxel_size_m = 0.05f;
-  int min_frames = 3;
+  /// Camera positions that must have seen a voxel, each this far from the others (metres).
+  int min_views = 3;
+  float min_baseline_m = 0.2f;
+  /// A pixel with a 4-neighbour whose depth differs by more than this is on an edge (metres).
+  float edge_jump_m = 0.3f;
   /// Side of the grid cells obstacles are looked up in (metres); about the check radius.
   float cell_size_m = 0.5f;
   /// Endpoints beyond this depth are not used (metres): far depth is noisier.
@@ -39,15 +51,17 @@ struct SurfaceHitsConfig {
 
 class SurfaceHits {
  public:
-  /// InputError for a non-positive size, min_frames < 1 or stride < 1.
+  /// InputError for a non-positive size, min_views < 1 or > kMaxViews, a negative baseline or
+  /// edge jump, or stride < 1.
   explicit SurfaceHits(const SurfaceHitsConfig& config = {});
 
   /// Adds the endpoints of one depth frame (z-depth, metres; 0 or non-finite: no depth) seen with
   /// `intrinsics` from `T_W_C`. InputError when the image size differs from the intrinsics.
   void addFrame(const DepthImage& depth, const CameraIntrinsics& intrinsics,
                 const Eigen::Isometry3d& T_W_C);
-  /// Adds endpoints given in the world frame as one frame.
-  void addPoints(const std::vector<Eigen::Vector3f>& points_W);
+  /// Adds endpoints given in the world frame, seen from `camera_W`.
+  void addPoints(const std::vector<Eigen::Vector3f>& points_W, const Eigen::Vector3f& camera_W);
+  static constexpr int kMaxViews = 4;
 
   /// True when an obstacle lies within `radius_m` of `centre_W`.
   bool blocks(const Eigen::Vector3f& centre_W, float radius_m) const;
@@ -58,13 +72,12 @@ class SurfaceHits {
   struct VoxelHits {
     Eigen::Vector3f sum_W = Eigen::Vector3f::Zero();
     int points = 0;
-    std::int64_t last_frame = -1;
-    int frames = 0;
+    std::array<Eigen::Vector3f, kMaxViews> views_W;  // camera positions that counted
+    int views = 0;
   };
   void addObstacle(const Eigen::Vector3f& p_W);
 
   SurfaceHitsConfig config_;
-  std::int64_t frame_ = 0;
   std::unordered_map<std::uint64_t, VoxelHits> voxels_;
   /// Obstacle points per lookup cell.
   std::unordered_map<std::uint64_t, std::vector<Eigen::Vector3f>> cells_;
