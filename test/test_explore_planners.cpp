@@ -217,6 +217,53 @@ TEST(HistoryPlanner, WithoutTheCacheTheFarPocketIsLeft) {
   EXPECT_TRUE(run.finished);
 }
 
+/// The corridor, until `pinned`: then no sphere is free (a map that has put a surface inside the
+/// check radius of every edge from the robot).
+class PinnableChecker final : public plan::CollisionChecker {
+ public:
+  bool pinned = false;
+  std::vector<std::uint8_t> spheresFree(const std::vector<Eigen::Vector3f>& centres, float radius_m,
+                                        UnknownPolicy unknown) override {
+    if (pinned) return std::vector<std::uint8_t>(centres.size(), 0);
+    return corridor_.spheresFree(centres, radius_m, unknown);
+  }
+  std::vector<EsdfSample> sample(const std::vector<Eigen::Vector3f>& points) override {
+    return corridor_.sample(points);
+  }
+  float voxelSize() const override { return 0.1f; }
+  float maxDistance() const override { return 2.0f; }
+
+ private:
+  CorridorChecker corridor_;
+};
+
+TEST(HistoryPlanner, WithNoFreeEdgeItHoversOnceThenGoesBackTheWayItCame) {
+  PinnableChecker checker;
+  Pockets pockets;
+  HistoryPlanner planner(corridorConfig());
+  ExplorationState state;
+  state.check_radius_m = 0.35f;
+  state.bounds_W =
+      Eigen::AlignedBox3f(Eigen::Vector3f(-7.7f, -0.7f, 0.5f), Eigen::Vector3f(7.7f, 0.7f, 1.5f));
+  state.checker = &checker;
+  state.gain_config = pockets.config;
+  state.gain = [&pockets](const std::vector<Eigen::Vector3f>& p) { return pockets.gains(p); };
+  const Eigen::Vector3f start(0.0f, 0.0f, 1.0f);
+  state.pose.position_W = start;
+  const ExplorationStep first = planner.plan(state);
+  ASSERT_EQ(first.mode, "local");
+  ASSERT_EQ(first.path.size(), 1u);
+  state.pose = {first.path[0].position_W, first.path[0].yaw_rad};
+  checker.pinned = true;
+  const ExplorationStep hover = planner.plan(state);
+  EXPECT_TRUE(hover.path.empty());
+  EXPECT_FALSE(hover.finished);
+  const ExplorationStep back = planner.plan(state);
+  EXPECT_EQ(back.mode, "back");
+  ASSERT_EQ(back.path.size(), 1u);
+  EXPECT_LT((back.path[0].position_W - start).norm(), 1e-5f);
+}
+
 TEST(NbvpPlanner, FliesTheFirstEdgeTowardsGainAndStopsWithoutGain) {
   CorridorChecker checker;
   Pockets pockets;

@@ -177,6 +177,8 @@ std::vector<int> HistoryPlanner::freeGraphPath(const ExplorationState& state, in
 ExplorationStep HistoryPlanner::plan(const ExplorationState& state) {
   ExplorationStep step;
   const int here = locate(state);
+  if (here != last_node_) previous_node_ = last_node_;
+  const int came_from = previous_node_;  // the last place before this one
   last_node_ = here;
   // On the way to a cached view: fly on.
   const auto at = std::find(global_path_.begin(), global_path_.end(), here);
@@ -230,7 +232,20 @@ ExplorationStep HistoryPlanner::plan(const ExplorationState& state) {
     }
   }
   if (step.best_gain_m3 >= config_.done_gain_m3) steps_without_gain_ = 0;
-  if (best == 0) return step;  // no free edge: hover, ask again
+  if (best == 0) {
+    // No free edge from here: hover and ask again once (a transient), then go back the way the
+    // robot came. A warehouse run hovered for good where the map had since put a surface inside
+    // the check radius of every edge from the root; the segment it arrived along was flown
+    // without a collision moments before.
+    if (++empty_trees_ >= 2 && came_from >= 0 && came_from != here) {
+      step.path.push_back({graph_.position(came_from), state.pose.yaw_rad});
+      target_node_ = came_from;
+      step.mode = "back";
+      empty_trees_ = 0;
+    }
+    return step;
+  }
+  empty_trees_ = 0;
   const TreeNode& first = tree.nodes()[branch.front()];
   const int first_node = graph_.addNode(first.position_W);
   graph_.addEdge(here, first_node);

@@ -80,10 +80,12 @@ class HistoryPlanner final : public ExplorationPlanner {
   HistoryGraph graph_;
   std::map<int, CachedView> cache_;
   int last_node_ = -1;            // where the robot was at the previous step
+  int previous_node_ = -1;        // the last place before last_node_ (another node)
   int target_node_ = -1;          // where the previous step sent it
   std::vector<int> global_path_;  // remaining nodes of a path to a cached view
   std::vector<Eigen::Vector3f> previous_branch_W_;
   int steps_without_gain_ = 0;
+  int empty_trees_ = 0;  // steps in a row whose tree found no free edge
 };
 
 }  // namespace strata::explore
