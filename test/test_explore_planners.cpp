@@ -237,7 +237,7 @@ class PinnableChecker final : public plan::CollisionChecker {
   CorridorChecker corridor_;
 };
 
-TEST(HistoryPlanner, WithNoFreeEdgeItHoversOnceThenGoesBackTheWayItCame) {
+TEST(HistoryPlanner, WithNoFreeEdgeItHoversOnceThenRetracesItsRoute) {
   PinnableChecker checker;
   Pockets pockets;
   HistoryPlanner planner(corridorConfig());

@@ -40,7 +40,7 @@ struct ExplorationStep {
   /// The planner finds no gain anywhere: exploration is over.
   bool finished = false;
   /// "local" (receding-horizon step), "global" (to a cached view), "continue" (rest of a global
-  /// path), "back" (no free edge from here twice: back to the previous place), "none".
+  /// path), "back" (no free edge from here twice: back along the route flown here), "none".
   std::string mode = "none";
   /// Best single-view gain the step found (m^3).
   float best_gain_m3 = 0.0f;

@@ -177,8 +177,6 @@ std::vector<int> HistoryPlanner::freeGraphPath(const ExplorationState& state, in
 ExplorationStep HistoryPlanner::plan(const ExplorationState& state) {
   ExplorationStep step;
   const int here = locate(state);
-  if (here != last_node_) previous_node_ = last_node_;
-  const int came_from = previous_node_;  // the last place before this one
   last_node_ = here;
   // On the way to a cached view: fly on.
   const auto at = std::find(global_path_.begin(), global_path_.end(), here);
@@ -188,6 +186,7 @@ ExplorationStep HistoryPlanner::plan(const ExplorationState& state) {
     for (int node : global_path_) step.path.push_back({graph_.position(node), yaw});
     step.path.back().yaw_rad = cache_.count(target_node_) ? cache_[target_node_].yaw_rad : yaw;
     step.mode = "continue";
+    rememberRoute(state, step.path);
     return step;
   }
   global_path_.clear();
@@ -223,6 +222,7 @@ ExplorationStep HistoryPlanner::plan(const ExplorationState& state) {
       for (Waypoint& w : step.path) w.yaw_rad = cache_[target].yaw_rad;
       step.mode = "global";
       steps_without_gain_ = 0;
+      rememberRoute(state, step.path);
       return step;
     }
     if (step.best_gain_m3 < config_.done_gain_m3 && best > 0) {
@@ -233,14 +233,14 @@ ExplorationStep HistoryPlanner::plan(const ExplorationState& state) {
   }
   if (step.best_gain_m3 >= config_.done_gain_m3) steps_without_gain_ = 0;
   if (best == 0) {
-    // No free edge from here: hover and ask again once (a transient), then go back the way the
-    // robot came. A warehouse run hovered for good where the map had since put a surface inside
-    // the check radius of every edge from the root; the segment it arrived along was flown
-    // without a collision moments before.
-    if (++empty_trees_ >= 2 && came_from >= 0 && came_from != here) {
-      step.path.push_back({graph_.position(came_from), state.pose.yaw_rad});
-      target_node_ = came_from;
-      step.mode = "back";
+    // No free edge from here: hover and ask again once (a transient), then retrace the route
+    // the robot flew here. A warehouse run hovered for good where the map had since put a
+    // surface inside the check radius of every edge from the robot; the route it arrived along
+    // was flown without a collision moments before (a straight line to an older place need not
+    // be: a first version that flew one cut into a rack).
+    if (++empty_trees_ >= 2) {
+      step.path = retraceRoute(state);
+      if (!step.path.empty()) step.mode = "back";
       empty_trees_ = 0;
     }
     return step;
@@ -255,7 +255,27 @@ ExplorationStep HistoryPlanner::plan(const ExplorationState& state) {
     previous_branch_W_.push_back(tree.nodes()[branch[i]].position_W);
   }
   step.mode = "local";
+  rememberRoute(state, step.path);
   return step;
+}
+
+void HistoryPlanner::rememberRoute(const ExplorationState& state,
+                                   const std::vector<Waypoint>& path) {
+  route_W_.assign(1, state.pose.position_W);
+  for (const Waypoint& w : path) route_W_.push_back(w.position_W);
+}
+
+std::vector<Waypoint> HistoryPlanner::retraceRoute(const ExplorationState& state) const {
+  // Where on the last route the robot stands (it may have stopped at an intermediate waypoint).
+  constexpr float kOnRouteM = 0.1f;
+  std::size_t at = route_W_.size();
+  for (std::size_t i = 0; i < route_W_.size(); ++i) {
+    if ((route_W_[i] - state.pose.position_W).norm() < kOnRouteM) at = i;
+  }
+  std::vector<Waypoint> back;
+  if (at == route_W_.size()) return back;
+  for (std::size_t i = at; i-- > 0;) back.push_back({route_W_[i], state.pose.yaw_rad});
+  return back;
 }
 
 }  // namespace strata::explore

@@ -80,12 +80,15 @@ class HistoryPlanner final : public ExplorationPlanner {
   HistoryGraph graph_;
   std::map<int, CachedView> cache_;
   int last_node_ = -1;            // where the robot was at the previous step
-  int previous_node_ = -1;        // the last place before last_node_ (another node)
   int target_node_ = -1;          // where the previous step sent it
   std::vector<int> global_path_;  // remaining nodes of a path to a cached view
   std::vector<Eigen::Vector3f> previous_branch_W_;
   int steps_without_gain_ = 0;
   int empty_trees_ = 0;  // steps in a row whose tree found no free edge
+  /// The last path issued, from where the robot stood then (the way back when it is pinned).
+  std::vector<Eigen::Vector3f> route_W_;
+  void rememberRoute(const ExplorationState& state, const std::vector<Waypoint>& path);
+  std::vector<Waypoint> retraceRoute(const ExplorationState& state) const;
 };
 
 }  // namespace strata::explore
