@@ -45,7 +45,7 @@ TEST(ExplorationLoop, HistoryPlannerExploresTheRoomWithoutCollision) {
   EXPECT_GT(run.reachable, 40000u);
   EXPECT_LT(run.reachable, 50000u);
   EXPECT_GT(run.result.explored_fraction, 0.85);
-  EXPECT_EQ(run.result.collisions, 0);
+  EXPECT_EQ(run.result.collisions(), 0);
   EXPECT_GE(run.result.min_clearance_m, 0.3f);
   EXPECT_GT(run.result.path_length_m, 3.0);
   ASSERT_FALSE(run.result.curve.empty());
@@ -60,7 +60,7 @@ TEST(ExplorationLoop, NbvpExploresTheRoomWithoutCollision) {
   NbvpPlanner planner(NbvpConfig{});
   const RoomRun run = exploreRoom(planner, 40.0);
   EXPECT_GT(run.result.explored_fraction, 0.7);
-  EXPECT_EQ(run.result.collisions, 0);
+  EXPECT_EQ(run.result.collisions(), 0);
   EXPECT_GT(run.result.steps.size(), 5u);
 }
 

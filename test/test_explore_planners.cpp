@@ -150,7 +150,7 @@ struct Pockets {
   }
 };
 
-ExplorationState corridorState(CorridorChecker& checker, const Pockets& pockets) {
+ExplorationState corridorState(plan::CollisionChecker& checker, const Pockets& pockets) {
   ExplorationState state;
   state.check_radius_m = 0.35f;
   state.bounds_W =
@@ -241,13 +241,7 @@ TEST(HistoryPlanner, WithNoFreeEdgeItHoversOnceThenRetracesItsRoute) {
   PinnableChecker checker;
   Pockets pockets;
   HistoryPlanner planner(corridorConfig());
-  ExplorationState state;
-  state.check_radius_m = 0.35f;
-  state.bounds_W =
-      Eigen::AlignedBox3f(Eigen::Vector3f(-7.7f, -0.7f, 0.5f), Eigen::Vector3f(7.7f, 0.7f, 1.5f));
-  state.checker = &checker;
-  state.gain_config = pockets.config;
-  state.gain = [&pockets](const std::vector<Eigen::Vector3f>& p) { return pockets.gains(p); };
+  ExplorationState state = corridorState(checker, pockets);
   const Eigen::Vector3f start(0.0f, 0.0f, 1.0f);
   state.pose.position_W = start;
   const ExplorationStep first = planner.plan(state);

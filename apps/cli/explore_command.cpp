@@ -91,17 +91,16 @@ std::optional<Eigen::Vector3f> parseTreeBox(const std::string& text) {
   return Eigen::Vector3f(v[0], v[1], v[2]);
 }
 
-std::unique_ptr<explore::ExplorationPlanner> makePlanner(const std::string& name,
-                                                         const ExploreOptions& o) {
-  const std::optional<Eigen::Vector3f> box = parseTreeBox(o.tree_box);
+std::unique_ptr<explore::ExplorationPlanner> makePlanner(
+    const std::string& name, unsigned long long seed, const std::optional<Eigen::Vector3f>& box) {
   if (name == "history") {
     explore::HistoryConfig c;
-    c.seed = o.seed;
+    c.seed = seed;
     if (box) c.tree.half_extent_m = *box;
     return std::make_unique<explore::HistoryPlanner>(c);
   }
   explore::NbvpConfig c;
-  c.seed = o.seed;
+  c.seed = seed;
   if (box) c.tree.half_extent_m = *box;
   return std::make_unique<explore::NbvpPlanner>(c);
 }
@@ -118,10 +117,12 @@ void printProgress(const std::string& planner, const explore::CurvePoint& point,
 explore::ExplorationResult runOne(const std::string& name, const ExploreOptions& o,
                                   const sim::World& world, const explore::ExplorationTruth& truth,
                                   const explore::ExplorationConfig& config,
-                                  const Eigen::Vector3f& start, vk::Context& context) {
+                                  const Eigen::Vector3f& start,
+                                  const std::optional<Eigen::Vector3f>& tree_box,
+                                  vk::Context& context) {
   const float start_yaw_rad = static_cast<float>(o.start_yaw_deg * M_PI / 180.0);
   explore::ExplorationLoop loop(world, truth, config, {start, start_yaw_rad}, context);
-  auto planner = makePlanner(name, o);
+  auto planner = makePlanner(name, o.seed, tree_box);
   explore::ExplorationResult result =
       loop.run(*planner, [&](const explore::CurvePoint& p, const explore::StepRecord* last) {
         if (!o.quiet) printProgress(name, p, last);
@@ -140,7 +141,7 @@ explore::ExplorationResult runOne(const std::string& name, const ExploreOptions&
       "%s: explored %.1f %% of %zu reachable voxels in %.0f s simulated (%s), path %.1f m, "
       "%d collisions, step %.1f ms median / %.1f ms p95, %.1f s wall\n",
       name.c_str(), 100.0 * result.explored_fraction, result.reachable_voxels, result.sim_time_s,
-      result.stop_reason.c_str(), result.path_length_m, result.collisions, times.median_ms,
+      result.stop_reason.c_str(), result.path_length_m, result.collisions(), times.median_ms,
       times.p95_ms, result.wall_s);
   return result;
 }
@@ -154,7 +155,7 @@ int runChecked(const ExploreOptions& o) {
     throw InputError("--planner must be history or nbvp, got '" + o.planner + "'");
   }
   const explore::ExplorationConfig config = loopConfig(o);
-  parseTreeBox(o.tree_box);  // bad input stops before any work
+  const std::optional<Eigen::Vector3f> tree_box = parseTreeBox(o.tree_box);
   const auto world = loadWorld(o.world_path, 0, 1);
   const Eigen::Vector3f start = o.start.empty()
                                     ? explore::defaultStart(*world, kDefaultStartHeightM, config)
@@ -171,7 +172,7 @@ int runChecked(const ExploreOptions& o) {
   if (o.compare) planners = {"history", "nbvp"};
   std::vector<explore::ExplorationResult> results;
   for (const std::string& name : planners) {
-    results.push_back(runOne(name, o, *world, truth, config, start, *context));
+    results.push_back(runOne(name, o, *world, truth, config, start, tree_box, *context));
   }
   writeExploreCurvePng((fs::path(o.out_dir) / "curve.png").string(), world->name(), results);
   writeExploreReport((fs::path(o.out_dir) / "report.json").string(), world->name(), results, config,

@@ -56,8 +56,8 @@ std::string runJson(const explore::ExplorationResult& r, const std::string& dead
   std::ostringstream j;
   j << "{\"explored_fraction\": " << jsonNumber(r.explored_fraction)
     << ", \"time_to_90_s\": " << (t90 < 0.0 ? "null" : jsonNumber(t90))
-    << ", \"collisions\": " << r.collisions << ", \"collision_events\": [" << collisionEventsJson(r)
-    << "]"
+    << ", \"collisions\": " << r.collisions() << ", \"collision_events\": ["
+    << collisionEventsJson(r) << "]"
     << ", \"min_clearance_m\": " << jsonNumber(r.min_clearance_m)
     << ", \"hit_obstacles\": " << r.hit_obstacles
     << ", \"spheres_refused_by_hits\": " << r.spheres_refused_by_hits

@@ -172,7 +172,6 @@ ExplorationResult ExplorationLoop::run(ExplorationPlanner& planner,
   result.explored_fraction = result.curve.empty() ? 0.0 : result.curve.back().explored_fraction;
   result.collision_events = findCollisions(truth_, result.flown_W, result.flown_time_s,
                                            config_.robot.radius_m, result.min_clearance_m);
-  result.collisions = static_cast<int>(result.collision_events.size());
   result.hit_obstacles = impl_->hits.obstacleCount();
   result.spheres_refused_by_hits = impl_->guarded ? impl_->guarded->refusedByHits() : 0;
   result.wall_s = msSince(wall_start) / 1000.0;

@@ -112,9 +112,10 @@ struct ExplorationResult {
   /// Simulated time of each of flown_W (seconds).
   std::vector<double> flown_time_s;
   double path_length_m = 0.0;
-  /// Contiguous stretches of the flown path whose true clearance is below the robot's radius.
-  int collisions = 0;
-  std::vector<CollisionEvent> collision_events;  // one per collision, in time order
+  /// Contiguous stretches of the flown path whose true clearance is below the robot's radius,
+  /// in time order.
+  std::vector<CollisionEvent> collision_events;
+  int collisions() const { return static_cast<int>(collision_events.size()); }
   /// Surface hits (ExplorationConfig::surface_hits): obstacle points at the end, and sphere
   /// tests the ESDF passed but the hits refused.
   std::size_t hit_obstacles = 0;

@@ -54,9 +54,7 @@ void requireClearStart(const sim::WorldScene& scene, const Eigen::Vector3f& star
 
 }  // namespace
 
-float startClearanceNeeded(const ExplorationConfig& config) {
-  return config.checkRadius() + 0.2f;
-}
+float startClearanceNeeded(const ExplorationConfig& config) { return config.checkRadius() + 0.2f; }
 
 Eigen::Vector3f defaultStart(const sim::World& world, float height_m,
                              const ExplorationConfig& config) {
@@ -140,6 +138,12 @@ sim::RgbdCameraConfig cameraConfig(const ExplorationConfig& c) {
   camera.min_range_m = c.camera_min_range_m;
   camera.max_range_m = c.camera_max_range_m;
   return camera;
+}
+
+SurfaceHitsConfig surfaceHitsConfig(const ExplorationConfig& c) {
+  SurfaceHitsConfig h;
+  h.max_depth_m = c.camera_max_range_m;  // endpoints as far as the map fuses them
+  return h;
 }
 
 MapperConfig mapperConfig(const ExplorationConfig& c) {

@@ -9,15 +9,6 @@
 namespace strata::explore {
 namespace {
 
-/// 21 bits per axis, offset so that +-1M cells fit.
-std::uint64_t packKey(const Eigen::Vector3i& v) {
-  constexpr std::int64_t kOffset = 1 << 20;
-  constexpr std::uint64_t kMask = (1u << 21) - 1u;
-  return (static_cast<std::uint64_t>(v.x() + kOffset) & kMask) |
-         ((static_cast<std::uint64_t>(v.y() + kOffset) & kMask) << 21) |
-         ((static_cast<std::uint64_t>(v.z() + kOffset) & kMask) << 42);
-}
-
 Eigen::Vector3i cellOf(const Eigen::Vector3f& p, float size_m) {
   return (p / size_m).array().floor().cast<int>();
 }
@@ -78,7 +69,7 @@ void SurfaceHits::addPoints(const std::vector<Eigen::Vector3f>& points_W,
   for (const Eigen::Vector3f& p : points_W) {
     if (!p.allFinite()) continue;
     const Eigen::Vector3i voxel = cellOf(p, config_.voxel_size_m);
-    VoxelHits& hits = voxels_[packKey(voxel)];
+    VoxelHits& hits = voxels_[voxel];
     if (hits.views >= config_.min_views) continue;  // already an obstacle
     hits.sum_W += p;
     ++hits.points;
@@ -95,7 +86,7 @@ void SurfaceHits::addPoints(const std::vector<Eigen::Vector3f>& points_W,
 }
 
 void SurfaceHits::addObstacle(const Eigen::Vector3f& p_W) {
-  cells_[packKey(cellOf(p_W, config_.cell_size_m))].push_back(p_W);
+  cells_[cellOf(p_W, config_.cell_size_m)].push_back(p_W);
   ++obstacle_count_;
 }
 
@@ -108,7 +99,7 @@ bool SurfaceHits::blocks(const Eigen::Vector3f& centre_W, float radius_m) const 
   for (int z = lo.z(); z <= hi.z(); ++z) {
     for (int y = lo.y(); y <= hi.y(); ++y) {
       for (int x = lo.x(); x <= hi.x(); ++x) {
-        const auto it = cells_.find(packKey({x, y, z}));
+        const auto it = cells_.find(Eigen::Vector3i(x, y, z));
         if (it == cells_.end()) continue;
         for (const Eigen::Vector3f& c : it->second) {
           if ((c - centre_W).squaredNorm() <= reach2) return true;

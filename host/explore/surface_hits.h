@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "core/types.h"
+#include "map/block_index.h"  // BlockIndexHash: the map's key hash, for voxel and cell keys
 #include "plan/collision_checker.h"
 
 namespace strata::explore {
@@ -66,7 +67,6 @@ class SurfaceHits {
   /// True when an obstacle lies within `radius_m` of `centre_W`.
   bool blocks(const Eigen::Vector3f& centre_W, float radius_m) const;
   std::size_t obstacleCount() const { return obstacle_count_; }
-  const SurfaceHitsConfig& config() const { return config_; }
 
  private:
   struct VoxelHits {
@@ -78,9 +78,9 @@ class SurfaceHits {
   void addObstacle(const Eigen::Vector3f& p_W);
 
   SurfaceHitsConfig config_;
-  std::unordered_map<std::uint64_t, VoxelHits> voxels_;
+  std::unordered_map<Eigen::Vector3i, VoxelHits, BlockIndexHash> voxels_;
   /// Obstacle points per lookup cell.
-  std::unordered_map<std::uint64_t, std::vector<Eigen::Vector3f>> cells_;
+  std::unordered_map<Eigen::Vector3i, std::vector<Eigen::Vector3f>, BlockIndexHash> cells_;
   std::size_t obstacle_count_ = 0;
 };
 
@@ -91,7 +91,6 @@ class HitGuardedChecker final : public plan::CollisionChecker {
  public:
   HitGuardedChecker(plan::CollisionChecker& inner, const SurfaceHits& hits)
       : inner_(&inner), hits_(&hits) {}
-  void setInner(plan::CollisionChecker& inner) { inner_ = &inner; }
   std::vector<std::uint8_t> spheresFree(const std::vector<Eigen::Vector3f>& centres_W,
                                         float radius_m, UnknownPolicy unknown) override;
   std::vector<EsdfSample> sample(const std::vector<Eigen::Vector3f>& points_W) override {

@@ -11,11 +11,15 @@ namespace strata::explore {
 
 sim::RgbdCameraConfig cameraConfig(const ExplorationConfig& config);
 MapperConfig mapperConfig(const ExplorationConfig& config);
+SurfaceHitsConfig surfaceHitsConfig(const ExplorationConfig& config);
 
 struct ExplorationLoop::Impl {
   Impl(const ExplorationConfig& config, const sim::World& world, const RobotPose& start,
        vk::Context& context)
-      : camera(cameraConfig(config)), follower(config.robot, start), gain(context, config.gain) {
+      : camera(cameraConfig(config)),
+        follower(config.robot, start),
+        gain(context, config.gain),
+        hits(surfaceHitsConfig(config)) {
     const sim::Light& light = world.session(0).light;
     lighting.direction_W = light.direction_W.normalized();
     lighting.intensity = light.intensity;
