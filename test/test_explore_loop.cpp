@@ -22,9 +22,9 @@ struct RoomRun {
   std::size_t reachable = 0;
 };
 
-RoomRun exploreRoom(ExplorationPlanner& planner, double time_limit_s) {
+RoomRun exploreRoom(ExplorationPlanner& planner, double time_limit_s,
+                    ExplorationConfig config = {}) {
   const sim::World world = sim::World::load(sim::findWorld("room"));
-  ExplorationConfig config;
   config.time_limit_s = time_limit_s;
   config.eval_period_s = 5.0;
   const Eigen::Vector3f start = defaultStart(world, 1.2f, config);
@@ -62,6 +62,45 @@ TEST(ExplorationLoop, NbvpExploresTheRoomWithoutCollision) {
   EXPECT_GT(run.result.explored_fraction, 0.7);
   EXPECT_EQ(run.result.collisions(), 0);
   EXPECT_GT(run.result.steps.size(), 5u);
+}
+
+/// Asks once for a straight flight 20 m along +x (through the room's wall), then is finished.
+class ThroughTheWallPlanner final : public ExplorationPlanner {
+ public:
+  ExplorationStep plan(const ExplorationState& state) override {
+    ExplorationStep step;
+    step.finished = asked_++ > 0;
+    if (!step.finished) {
+      step.path = {{state.pose.position_W + Eigen::Vector3f(20.0f, 0.0f, 0.0f), 0.0f}};
+    }
+    return step;
+  }
+  std::string name() const override { return "through-the-wall"; }
+
+ private:
+  int asked_ = 0;
+};
+
+// The wall (and the unknown space behind it) lie within the checks' 2 m lookahead from the
+// first check in flight: the robot brakes at once, stops clear of everything and asks again.
+TEST(ExplorationLoop, InFlightChecksBrakeWhenThePathAheadIsBlocked) {
+  ThroughTheWallPlanner planner;
+  const RoomRun braked = exploreRoom(planner, 30.0);
+  EXPECT_GE(braked.result.inflight_checks, 1u);
+  EXPECT_EQ(braked.result.brakes, 1u);
+  EXPECT_EQ(braked.result.stop_reason, "no gain") << "asked again once at rest";
+  EXPECT_EQ(braked.result.collisions(), 0);
+  EXPECT_GE(braked.result.min_clearance_m, 0.3f);
+  EXPECT_GT(braked.result.path_length_m, 0.0);
+  EXPECT_LT(braked.result.path_length_m, 0.6) << "within the stopping distance of the start";
+
+  ExplorationConfig unchecked;
+  unchecked.inflight_checks = false;
+  ThroughTheWallPlanner blind;
+  const RoomRun crashed = exploreRoom(blind, 30.0, unchecked);
+  EXPECT_EQ(crashed.result.inflight_checks, 0u);
+  EXPECT_EQ(crashed.result.brakes, 0u);
+  EXPECT_GE(crashed.result.collisions(), 1) << "without the checks the path meets the wall";
 }
 
 TEST(ExploreCommand, BadInputIsAnInputError) {

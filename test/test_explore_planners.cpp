@@ -71,6 +71,36 @@ TEST(RobotModel, TurnsInPlaceAtAWaypoint) {
   EXPECT_TRUE(robot.done());
 }
 
+TEST(RobotModel, BrakesAlongItsSegmentToRestWithinTheStoppingDistance) {
+  RobotConfig config;
+  config.max_speed_mps = 1.0f;
+  config.max_accel_mps2 = 0.5f;
+  PathFollower robot(config, {Eigen::Vector3f(0, 0, 1), 0.0f});
+  robot.setPath({{Eigen::Vector3f(10, 0, 1), 0.0f}, {Eigen::Vector3f(10, 5, 1), 1.0f}});
+  robot.advance(4.0);  // 2 s accelerating, 2 s cruising: at x = 3 at 1 m/s
+  ASSERT_TRUE(robot.moving());
+  ASSERT_NEAR(robot.speed(), 1.0, 1e-6);
+  const float braked_at_x = robot.pose().position_W.x();
+  EXPECT_NEAR(robot.brake(), 1.0, 1e-6);  // v^2 / (2 a)
+  EXPECT_FALSE(robot.moving());
+  EXPECT_FALSE(robot.done()) << "still braking";
+  double previous_speed = robot.speed();
+  for (int i = 0; i < 300 && !robot.done(); ++i) {
+    robot.advance(0.01);
+    EXPECT_LE(previous_speed - robot.speed(), 0.5 * 0.01 + 1e-6) << "decelerates at max_accel";
+    previous_speed = robot.speed();
+  }
+  ASSERT_TRUE(robot.done());
+  EXPECT_TRUE(robot.remaining().empty()) << "the rest of the path is abandoned";
+  EXPECT_NEAR(robot.pose().position_W.x(), braked_at_x + 1.0f, 1e-3f);
+  EXPECT_NEAR(robot.pose().position_W.y(), 0.0f, 1e-6f) << "along the segment, not to the next";
+  EXPECT_EQ(robot.speed(), 0.0);
+  // At rest, braking stops at once.
+  robot.setPath({{Eigen::Vector3f(0, 0, 1), 0.0f}});
+  EXPECT_EQ(robot.brake(), 0.0);
+  EXPECT_TRUE(robot.done());
+}
+
 TEST(HistoryGraph, ShortestPathAndRerouting) {
   HistoryGraph g;
   const int a = g.addNode({0, 0, 0}), b = g.addNode({1, 0, 0}), c = g.addNode({2, 0, 0});

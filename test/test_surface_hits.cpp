@@ -101,6 +101,8 @@ TEST(SurfaceHits, DepthFramesBackProjectThroughTheCamera) {
   EXPECT_FALSE(edge.blocks(Eigen::Vector3f(4.0f, -0.7875f, 1.025f), 0.1f));
   EXPECT_TRUE(edge.blocks(Eigen::Vector3f(5.0f, -1.3f, 1.025f), 0.1f));
   EXPECT_TRUE(edge.blocks(Eigen::Vector3f(3.0f, -0.2f, 1.025f), 0.05f));  // the near wall
+  // The near side of the edge (u = 29, y = -0.475) is the near wall's own surface: kept.
+  EXPECT_TRUE(edge.blocks(Eigen::Vector3f(3.0f, -0.475f, 1.025f), 0.03f));
 }
 
 /// Every sphere is free and the ESDF reads 1 m everywhere.

@@ -76,6 +76,7 @@ explore::ExplorationConfig loopConfig(const ExploreOptions& o) {
   c.camera_height_px = o.camera_height_px;
   c.eval_period_s = o.eval_period_s;
   c.surface_hits = !o.no_surface_hits;
+  c.inflight_checks = !o.no_inflight_checks;
   c.seed = o.seed;
   c.validate();
   return c;
@@ -207,6 +208,9 @@ CLI::App* addExploreCommand(CLI::App& app, ExploreOptions& o) {
                   "X,Y: where the dead end opens (metres); default: its point nearest the start");
   cmd->add_flag("--no-surface-hits", o.no_surface_hits,
                 "Check paths against the ESDF alone, without depth endpoints as obstacles");
+  cmd->add_flag("--no-inflight-checks", o.no_inflight_checks,
+                "Fly every path as planned, without checking the path ahead at each frame and "
+                "braking when it is blocked");
   cmd->add_option("--tree-box", o.tree_box,
                   "X,Y,Z: half extents of the local tree's sampling box around the robot, metres "
                   "(default 4,4,0.6)");

@@ -61,6 +61,8 @@ std::string runJson(const explore::ExplorationResult& r, const std::string& dead
     << ", \"min_clearance_m\": " << jsonNumber(r.min_clearance_m)
     << ", \"hit_obstacles\": " << r.hit_obstacles
     << ", \"spheres_refused_by_hits\": " << r.spheres_refused_by_hits
+    << ", \"inflight_checks\": " << r.inflight_checks << ", \"brakes\": " << r.brakes
+    << ", \"inflight_ms\": " << jsonNumber(r.inflight_ms)
     << ", \"path_length_m\": " << jsonNumber(r.path_length_m)
     << ", \"step_ms_median\": " << jsonNumber(times.median_ms)
     << ", \"step_ms_p95\": " << jsonNumber(times.p95_ms) << ", \"steps\": " << r.steps.size()

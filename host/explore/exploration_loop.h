@@ -64,6 +64,14 @@ struct ExplorationConfig {
   /// Depth endpoints seen from 3 places also block the planners' checks (surface_hits.h): thin
   /// parts (2.5 cm shelf boards) that the TSDF at 10 cm loses. false: the ESDF alone.
   bool surface_hits = true;
+  /// In flight, after every fused frame, the path ahead (inflight_lookahead_m of it) is checked
+  /// again against the surface hits of that frame and the ESDF of the last planning step (which
+  /// passed it through space seen free), with the check radius, or the robot's
+  /// radius where the robot is already closer than the check radius to something (it may fly
+  /// away from it, not nearer): blocked, the robot brakes to rest and the planner is asked
+  /// again. false: paths are flown as planned.
+  bool inflight_checks = true;
+  float inflight_lookahead_m = 2.0f;
   /// Steps in a row with nothing to fly before the run stops ("stuck").
   int max_idle_steps = 10;
   /// The gain model of both planners: 10-degree bins, 8 elevation rays (coarser than the
@@ -121,6 +129,11 @@ struct ExplorationResult {
   std::size_t hit_obstacles = 0;
   std::uint64_t spheres_refused_by_hits = 0;
   float min_clearance_m = 0.0f;
+  /// In-flight checks (ExplorationConfig::inflight_checks): checks made, brakes they caused,
+  /// their wall time including the ESDF refresh before each (ms, total).
+  std::size_t inflight_checks = 0;
+  std::size_t brakes = 0;
+  double inflight_ms = 0.0;
   double sim_time_s = 0.0;
   double wall_s = 0.0;
   double explored_fraction = 0.0;
@@ -150,6 +163,10 @@ class ExplorationLoop {
  private:
   struct Impl;
   void fuseFrame(double sim_time_s, std::uint64_t index);
+  /// Brings the ESDF and the checkers up to date; the checker the planners use.
+  plan::CollisionChecker& refreshChecker();
+  /// The in-flight check: true when the path ahead is blocked.
+  bool pathAheadBlocked();
 
   const sim::World& world_;
   const ExplorationTruth& truth_;

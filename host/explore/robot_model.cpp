@@ -98,6 +98,43 @@ void PathFollower::beginNext() {
   phase_ = Phase::kMoving;
 }
 
+double PathFollower::brake() {
+  if (phase_ == Phase::kBraking) return 0.5 * speed_mps_ * speed_mps_ / config_.max_accel_mps2;
+  const bool in_motion = phase_ == Phase::kMoving && speed_mps_ > 0.0;
+  if (in_motion) {
+    // Straight segments: the direction of travel is the segment's.
+    brake_dir_W_ = (path_[next_].position_W - segment_start_W_).normalized();
+    brake_start_W_ = pose_.position_W;
+    brake_speed_mps_ = speed_mps_;
+    phase_time_s_ = 0.0;
+  }
+  path_.clear();
+  next_ = 0;
+  if (!in_motion) {
+    phase_ = Phase::kIdle;
+    speed_mps_ = 0.0;
+    return 0.0;
+  }
+  phase_ = Phase::kBraking;
+  return 0.5 * speed_mps_ * speed_mps_ / config_.max_accel_mps2;
+}
+
+double PathFollower::advanceBraking(double dt_s) {
+  const double a = config_.max_accel_mps2;
+  const double stop_s = brake_speed_mps_ / a;
+  const double used = std::min(dt_s, stop_s - phase_time_s_);
+  phase_time_s_ += used;
+  const double t = phase_time_s_;
+  const double s = brake_speed_mps_ * t - 0.5 * a * t * t;
+  pose_.position_W = brake_start_W_ + brake_dir_W_ * static_cast<float>(s);
+  speed_mps_ = std::max(0.0, brake_speed_mps_ - a * t);
+  if (phase_time_s_ >= stop_s - 1e-12) {
+    speed_mps_ = 0.0;
+    phase_ = Phase::kIdle;
+  }
+  return dt_s - used;
+}
+
 double PathFollower::turnYaw(double dt_s, float target_yaw_rad) {
   const float error = wrapAngle(target_yaw_rad - pose_.yaw_rad);
   const double max_turn = config_.max_yaw_rate_radps * dt_s;
@@ -122,6 +159,10 @@ void PathFollower::advance(double dt_s) {
       phase_time_s_ -= used;
       left_s -= used;
       if (phase_time_s_ <= 0.0) phase_ = Phase::kIdle;
+      continue;
+    }
+    if (phase_ == Phase::kBraking) {
+      left_s = advanceBraking(left_s);
       continue;
     }
     const Waypoint& target = path_[next_];

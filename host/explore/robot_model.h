@@ -3,8 +3,9 @@
 // along the yaw, horizontal) flying a path of waypoints. Each segment is flown in a straight
 // line with a trapezoidal speed profile (accelerate at max_accel, cruise at max_speed, brake to
 // a stop at the waypoint); meanwhile the yaw turns towards the waypoint's target yaw at
-// max_yaw_rate, and at the waypoint the robot turns in place until the yaw is reached. Time is
-// simulated: advance(dt) moves the robot by dt seconds.
+// max_yaw_rate, and at the waypoint the robot turns in place until the yaw is reached. brake()
+// abandons the path: the robot decelerates at max_accel along its segment to rest (yaw held).
+// Time is simulated: advance(dt) moves the robot by dt seconds.
 // Frames: world (z up), metres, seconds; yaw counter-clockwise about +z from +x, radians.
 // Thread safety: none (plain value types).
 #include <Eigen/Core>
@@ -58,6 +59,12 @@ class PathFollower {
   void setPath(std::vector<Waypoint> path);
   /// Stay in place for duration_s (hovering), e.g. when the planner has nothing to fly.
   void hover(double duration_s);
+  /// Abandons the rest of the path: decelerates at max_accel_mps2 along the current segment to
+  /// rest (at once when not moving), yaw held. Returns the distance still flown while braking
+  /// (metres). done() once at rest.
+  double brake();
+  /// Moving along a segment (not braking, turning or hovering).
+  bool moving() const { return phase_ == Phase::kMoving; }
   /// Moves the simulated robot by dt_s seconds.
   void advance(double dt_s);
 
@@ -72,10 +79,12 @@ class PathFollower {
   const RobotConfig& config() const { return config_; }
 
  private:
-  enum class Phase { kIdle, kMoving, kTurning, kHovering };
+  enum class Phase { kIdle, kMoving, kBraking, kTurning, kHovering };
   /// Turns towards target_yaw_rad for at most dt_s; returns the time left over once reached.
   double turnYaw(double dt_s, float target_yaw_rad);
   void beginNext();
+  /// kBraking for at most dt_s; returns the time left over once at rest.
+  double advanceBraking(double dt_s);
 
   RobotConfig config_;
   RobotPose pose_;
@@ -86,6 +95,10 @@ class PathFollower {
   TrapezoidProfile profile_{0.0, 1.0, 1.0};
   double phase_time_s_ = 0.0;  // time into the segment (kMoving) or hover left (kHovering)
   double speed_mps_ = 0.0;
+  // kBraking: from brake_start_W_ along brake_dir_W_ at brake_speed_mps_ when the brake began.
+  Eigen::Vector3f brake_start_W_ = Eigen::Vector3f::Zero();
+  Eigen::Vector3f brake_dir_W_ = Eigen::Vector3f::Zero();
+  double brake_speed_mps_ = 0.0;
 };
 
 }  // namespace strata::explore

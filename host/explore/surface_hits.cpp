@@ -39,13 +39,15 @@ void SurfaceHits::addFrame(const DepthImage& depth, const CameraIntrinsics& intr
   }
   const Eigen::Isometry3f T = T_W_C.cast<float>();
   const int w = depth.width_px, h = depth.height_px;
-  auto onEdge = [&](int u, int v, float z) {
+  // Behind an edge: a 4-neighbour nearer by more than the jump (the far side, or a flying pixel
+  // between the sides). The near side stays: it is the thin structure's own surface.
+  auto behindEdge = [&](int u, int v, float z) {
     const int du[4] = {-1, 1, 0, 0}, dv[4] = {0, 0, -1, 1};
     for (int i = 0; i < 4; ++i) {
       const int un = u + du[i], vn = v + dv[i];
       if (un < 0 || vn < 0 || un >= w || vn >= h) continue;
       const float zn = depth.at(un, vn);
-      if (zn > 0.0f && std::abs(zn - z) > config_.edge_jump_m) return true;
+      if (zn > 0.0f && z - zn > config_.edge_jump_m) return true;
     }
     return false;
   };
@@ -53,7 +55,7 @@ void SurfaceHits::addFrame(const DepthImage& depth, const CameraIntrinsics& intr
   for (int v = 0; v < h; v += config_.pixel_stride) {
     for (int u = 0; u < w; u += config_.pixel_stride) {
       const float z = depth.at(u, v);
-      if (!(z > 0.0f) || !(z <= config_.max_depth_m) || onEdge(u, v, z)) continue;  // also NaN
+      if (!(z > 0.0f) || !(z <= config_.max_depth_m) || behindEdge(u, v, z)) continue;  // also NaN
       const Eigen::Vector3f p_C((static_cast<float>(u) - intrinsics.cx_px) * z / intrinsics.fx_px,
                                 (static_cast<float>(v) - intrinsics.cy_px) * z / intrinsics.fy_px,
                                 z);

@@ -13,9 +13,12 @@
 // must not keep: a robot turning in place sees the same edge along the same ray frame after frame
 // and piles such points into the same voxels (5 cm runs counting frames instead of places closed
 // the office's 0.9 m doors), while from another place the ray, and so the flying points, move and
-// only real surfaces stay. Pixels on a depth edge (a 4-neighbour more than `edge_jump_m` nearer or
-// farther) are not used at all: a flying point passes only at jumps under twice that (never at
-// a door frame with a room behind it), while a surface seen at a grazing angle, which changes
+// only real surfaces stay. Pixels behind a depth edge (a 4-neighbour more than `edge_jump_m`
+// nearer: the far side, or a flying pixel between the sides) are not used at all; the near side
+// is the edge's own surface and stays (a board seen edge-on from the aisle is little more than
+// its near-side pixels; skipping both sides lost it and exploration flew into rack bays). A
+// flying point passes only within edge_jump_m behind a near side, and must still be seen from
+// three places. A surface seen at a grazing angle, which changes
 // depth fast from pixel to pixel (a board's top from 0.2 m above at 2 m: ~0.28 m per pixel of
 // the 160 px camera), stays; with 5 cm it went and the boards with it. Obstacles are never removed:
 // for static worlds (exploration), not for scenes that change. An obstacle is the mean of the
@@ -40,7 +43,7 @@ struct SurfaceHitsConfig {
   /// Camera positions that must have seen a voxel, each this far from the others (metres).
   int min_views = 3;
   float min_baseline_m = 0.2f;
-  /// A pixel with a 4-neighbour whose depth differs by more than this is on an edge (metres).
+  /// A pixel with a 4-neighbour nearer by more than this is behind an edge (metres).
   float edge_jump_m = 0.3f;
   /// Side of the grid cells obstacles are looked up in (metres); about the check radius.
   float cell_size_m = 0.5f;
