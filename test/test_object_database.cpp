@@ -194,6 +194,39 @@ TEST(ObjectDatabase, BoxesOfDifferentHeightsFoundTwoModels) {
   }
 }
 
+// A part of an object off the floor (0.15 m up: a fragment above thin legs) has a span that says
+// nothing of the whole: the height check leaves it to registration and the consistency check,
+// unless told to compare every pair.
+TEST(ObjectDatabase, HeightsAreComparedOnlyBetweenSpansFromTheFloor) {
+  const test::Thing floating{[](const Eigen::Vector3d& p) {
+                               return test::boxSdf(
+                                   p, Eigen::AlignedBox3d(Eigen::Vector3d(-0.22, -0.15, 0.15),
+                                                          Eigen::Vector3d(0.22, 0.15, 0.4)));
+                             },
+                             {0.6, 0.7},
+                             100.0};
+  const Session first = makeSession({kBox}, 1);
+  const Session second = makeSession({floating}, 2);
+  for (const bool grounded_only : {true, false}) {
+    DatabaseConfig config;
+    config.height_check_grounded_only = grounded_only;
+    ObjectDatabase database(config);
+    database.addSession(1, first.map, first.surface, first.segments);
+    const std::vector<SegmentOutcome> outcomes =
+        database.addSession(2, second.map, second.surface, second.segments);
+    ASSERT_EQ(outcomes.size(), 1u);
+    std::printf("grounded only %d: model %d, %d registrations, refused: %s\n", grounded_only,
+                outcomes[0].model_id, outcomes[0].registrations, outcomes[0].refused.c_str());
+    if (grounded_only) {
+      EXPECT_EQ(outcomes[0].refused.find("height"), std::string::npos) << outcomes[0].refused;
+      EXPECT_EQ(outcomes[0].registrations, 1);
+    } else {
+      EXPECT_NE(outcomes[0].refused.find("height"), std::string::npos) << outcomes[0].refused;
+      EXPECT_EQ(outcomes[0].registrations, 0);
+    }
+  }
+}
+
 TEST(ObjectDatabase, ConfigIsValidated) {
   DatabaseConfig config;
   config.registration.ransac_iterations = 0;
@@ -203,6 +236,9 @@ TEST(ObjectDatabase, ConfigIsValidated) {
   EXPECT_THROW(ObjectDatabase{config}, InputError);
   config = DatabaseConfig{};
   config.max_height_difference_ratio = -0.1f;
+  EXPECT_THROW(ObjectDatabase{config}, InputError);
+  config = DatabaseConfig{};
+  config.grounded_tolerance_voxels = std::nanf("");
   EXPECT_THROW(ObjectDatabase{config}, InputError);
 }
 

@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
 #include "core/error.h"
+#include "core/statistics.h"
 
 namespace strata::objects {
 
@@ -65,6 +67,16 @@ float heightOf(const SurfaceCloud& cloud) {
   return high - low;
 }
 
+/// The floor's height under a session: the 2nd percentile of its surface vertices' heights
+/// (world z; 0 for an empty surface).
+float floorHeight(const Mesh& surface) {
+  std::vector<double> z;
+  z.reserve(surface.vertices.size());
+  for (const auto& v : surface.vertices) z.push_back(v.z());
+  const double floor_z = quantile(z, 0.02);
+  return std::isfinite(floor_z) ? static_cast<float>(floor_z) : 0.0f;
+}
+
 /// "" when the heights agree within the config's tolerance (or the check is off), else why not.
 std::string heightMismatch(float observation_m, float model_m, const DatabaseConfig& config) {
   if (config.max_height_difference_ratio <= 0.0f) return "";
@@ -82,6 +94,10 @@ void DatabaseConfig::validate() const {
   if (!(max_height_difference_ratio >= 0.0f && max_height_difference_ratio < 1.0f)) {
     throw InputError("DatabaseConfig.max_height_difference_ratio must be in [0, 1), got " +
                      std::to_string(max_height_difference_ratio));
+  }
+  if (!(grounded_tolerance_voxels >= 0.0f)) {
+    throw InputError("DatabaseConfig.grounded_tolerance_voxels must be >= 0, got " +
+                     std::to_string(grounded_tolerance_voxels));
   }
   if (!(max_height_difference_voxels >= 0.0f)) {
     throw InputError("DatabaseConfig.max_height_difference_voxels must be >= 0, got " +
@@ -124,6 +140,7 @@ std::vector<SegmentOutcome> ObjectDatabase::addSession(
   }
   // NOTE: registration works on samples one map voxel apart, so its radii follow the map.
   config_.registration.voxel_size_m = voxel_m;
+  floor_z_m_ = floorHeight(surface.mesh);
   std::vector<SegmentOutcome> outcomes;
   for (const change::DiscoveredObject* segment : largestFirst(segments)) {
     outcomes.push_back(addSegment(session, session_map, surface, *segment));
@@ -193,11 +210,18 @@ ObjectDatabase::Match ObjectDatabase::bestMatch(const ObjectObservation& observa
       prefilter_.candidates(observation.extent_m, observation.mean_color);
   outcome.candidates = static_cast<int>(candidates.size());
   const float observation_height_m = heightOf(observation.surface_O);
+  const bool observation_grounded =
+      !config_.height_check_grounded_only || grounded(observation.surface_O, observation.T_W_O);
   for (const int id : candidates) {
     const ObjectModel* model = findModel(id);
     if (model == nullptr || model->surface_M.empty()) continue;
+    const bool compare_heights =
+        observation_grounded &&
+        (!config_.height_check_grounded_only ||
+         (!model->instances.empty() && grounded(model->surface_M, model->instances.front().T_W_M)));
     const std::string mismatch =
-        heightMismatch(observation_height_m, heightOf(model->surface_M), config_);
+        compare_heights ? heightMismatch(observation_height_m, heightOf(model->surface_M), config_)
+                        : std::string();
     if (!mismatch.empty()) {
       appendRefusal(outcome.refused, id, mismatch);
       continue;
@@ -239,6 +263,15 @@ ObjectDatabase::Match ObjectDatabase::bestMatch(const ObjectObservation& observa
     }
   }
   return best;
+}
+
+bool ObjectDatabase::grounded(const SurfaceCloud& cloud, const Eigen::Isometry3d& T_W_X) const {
+  if (cloud.empty()) return false;
+  const Eigen::Isometry3f T = T_W_X.cast<float>();
+  float low_z = std::numeric_limits<float>::infinity();
+  for (const Eigen::Vector3f& p : cloud.points) low_z = std::min(low_z, (T * p).z());
+  return low_z <=
+         floor_z_m_ + config_.grounded_tolerance_voxels * config_.registration.voxel_size_m;
 }
 
 Mesh ObjectDatabase::sessionObjects(int session) const {

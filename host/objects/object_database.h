@@ -50,6 +50,16 @@ struct DatabaseConfig {
   /// other boxes' models (docs/objects_evaluation.md).
   float max_height_difference_ratio = 0.08f;
   float max_height_difference_voxels = 2.5f;
+  /// The height check compares only spans that reach down to the floor (both the observation's
+  /// and the model's at its first instance, within grounded_tolerance_voxels of the floor): a
+  /// standing object's full height starts there, while a fragment off the floor (a chair's back
+  /// above its thin legs, seen across a desk) is a part whose span says nothing of the whole.
+  /// The floor is the 2nd percentile of the session surface's heights (the world frame's z is
+  /// up and shared by the sessions). false: every pair is compared. Measured (demo, 5 sessions):
+  /// office recall 25.0 -> 33.3 %, warehouse precision 93.2 -> 100 %, the room unchanged
+  /// (docs/objects_evaluation.md).
+  bool height_check_grounded_only = true;
+  float grounded_tolerance_voxels = 4.0f;
   /// Merge an accepted observation into the model (false: only record the instance).
   bool merge = true;
   void validate() const;  // InputError naming the bad field
@@ -109,12 +119,16 @@ class ObjectDatabase {
                             const change::DiscoveredObject& segment);
   Match bestMatch(const ObjectObservation& observation, const TsdfMap& session_map,
                   SegmentOutcome& outcome) const;
+  /// Whether the lowest point of `cloud`, placed by T_W_X, lies within the grounded tolerance of
+  /// the current session's floor.
+  bool grounded(const SurfaceCloud& cloud, const Eigen::Isometry3d& T_W_X) const;
 
   DatabaseConfig config_;
   std::vector<ObjectModel> models_;
   std::vector<int> sessions_;
   ModelPrefilter prefilter_;
   int next_id_ = 1;
+  float floor_z_m_ = 0.0f;  // of the session being added (world frame)
 };
 
 }  // namespace strata::objects
