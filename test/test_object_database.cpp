@@ -33,6 +33,13 @@ const ObjectInstance* instanceOf(const ObjectModel& model, int session) {
   return nullptr;
 }
 
+/// Adds `first` as session 1, then `second` as session `second_id`; the second's outcomes.
+std::vector<SegmentOutcome> addTwo(ObjectDatabase& database, const Session& first,
+                                   const Session& second, int second_id = 2) {
+  database.addSession(1, first.map, first.surface, first.segments);
+  return database.addSession(second_id, second.map, second.surface, second.segments);
+}
+
 TEST(ObjectDatabase, OneObjectInThreeSessionsAndABoxMakeTwoModels) {
   const Fixture& f = threeSessions();
   for (const auto& session : f.outcomes) {
@@ -149,9 +156,7 @@ TEST(ObjectDatabase, MatchesBelowTheMinimumScoreFoundNewModels) {
     DatabaseConfig config;
     config.min_match_score = min_score;
     ObjectDatabase database(config);
-    database.addSession(1, first.map, first.surface, first.segments);
-    const std::vector<SegmentOutcome> outcomes =
-        database.addSession(3, behind.map, behind.surface, behind.segments);
+    const std::vector<SegmentOutcome> outcomes = addTwo(database, first, behind, 3);
     ASSERT_EQ(outcomes.size(), 1u);
     if (min_score < 0.7f) {
       EXPECT_EQ(database.models().size(), 1u) << outcomes[0].refused;
@@ -176,12 +181,9 @@ TEST(ObjectDatabase, BoxesOfDifferentHeightsFoundTwoModels) {
                         {0.6, 0.7},
                         100.0};
   for (const bool same : {false, true}) {
-    const Session first = makeSession({tall}, 1);
-    const Session second = makeSession({same ? tall_again : low}, 2);
     ObjectDatabase database;
-    database.addSession(1, first.map, first.surface, first.segments);
     const std::vector<SegmentOutcome> outcomes =
-        database.addSession(2, second.map, second.surface, second.segments);
+        addTwo(database, makeSession({tall}, 1), makeSession({same ? tall_again : low}, 2));
     ASSERT_EQ(outcomes.size(), 1u);
     std::printf("%s box: model %d, refused: %s\n", same ? "same" : "lower", outcomes[0].model_id,
                 outcomes[0].refused.c_str());
@@ -211,9 +213,7 @@ TEST(ObjectDatabase, HeightsAreComparedOnlyBetweenSpansFromTheFloor) {
     DatabaseConfig config;
     config.height_check_grounded_only = grounded_only;
     ObjectDatabase database(config);
-    database.addSession(1, first.map, first.surface, first.segments);
-    const std::vector<SegmentOutcome> outcomes =
-        database.addSession(2, second.map, second.surface, second.segments);
+    const std::vector<SegmentOutcome> outcomes = addTwo(database, first, second);
     ASSERT_EQ(outcomes.size(), 1u);
     std::printf("grounded only %d: model %d, %d registrations, refused: %s\n", grounded_only,
                 outcomes[0].model_id, outcomes[0].registrations, outcomes[0].refused.c_str());
