@@ -227,6 +227,82 @@ TEST(ObjectDatabase, HeightsAreComparedOnlyBetweenSpansFromTheFloor) {
   }
 }
 
+/// A wall with a wing at its left end (+y) and a round post at its right end (-y).
+double wingAndPostSdf(const Eigen::Vector3d& p) {
+  const Eigen::AlignedBox3d wall(Eigen::Vector3d(-0.3, -0.1, -0.1),
+                                 Eigen::Vector3d(0.3, 0.0, 0.45));
+  const Eigen::AlignedBox3d wing(Eigen::Vector3d(-0.3, 0.0, -0.1),
+                                 Eigen::Vector3d(-0.1, 0.2, 0.45));
+  const Eigen::Vector2d post_xy(0.22, -0.2);
+  const double post =
+      std::max((p.head<2>() - post_xy).norm() - 0.1, std::max(-0.1 - p.z(), p.z() - 0.45));
+  return std::min({test::boxSdf(p, wall), test::boxSdf(p, wing), post});
+}
+
+/// The model founded by `session` alone, with id `id`.
+ObjectModel modelOf(const Session& session, int session_id, int id) {
+  ObjectDatabase alone;
+  alone.addSession(session_id, session.map, session.surface, session.segments);
+  EXPECT_EQ(alone.models().size(), 1u);
+  ObjectModel model = alone.models().at(0);
+  model.id = id;
+  return model;
+}
+
+// One object held as two models (its left end seen in session 1, its right end in session 2;
+// put together from two databases, as two sessions that did not match would leave them). Session
+// 3 sees it whole: both models accept it, and the second is joined into the first (instances
+// moved, its id retired) unless joining is off.
+TEST(ObjectDatabase, AnObservationTwoModelsAcceptJoinsThem) {
+  const test::Thing left{
+      wingAndPostSdf, {0.7, 0.8}, 0.0, [](const Eigen::Vector3d& p) { return p.x() < -0.05; }};
+  const test::Thing right{
+      wingAndPostSdf, {1.2, 0.7}, 40.0, [](const Eigen::Vector3d& p) { return p.x() > 0.05; }};
+  const test::Thing whole{wingAndPostSdf, {0.9, 1.2}, 120.0};
+  const Session s3 = makeSession({whole}, 3);
+  const ObjectModel left_model = modelOf(makeSession({left}, 1), 1, 1);
+  const ObjectModel right_model = modelOf(makeSession({right}, 2), 2, 2);
+  for (const bool join : {true, false}) {
+    DatabaseConfig config;
+    config.join_duplicates = join;
+    config.registration.voxel_size_m = kVoxel;
+    ObjectDatabase database = ObjectDatabase::fromParts(config, {left_model, right_model}, {1, 2});
+    const std::vector<SegmentOutcome> third =
+        database.addSession(3, s3.map, s3.surface, s3.segments);
+    ASSERT_EQ(third.size(), 1u);
+    std::printf("join %d: session 3 -> model %d, joined %zu; refused: %s\n", join,
+                third[0].model_id, third[0].joined_models.size(), third[0].refused.c_str());
+    ASSERT_NE(third[0].refused.find("accepted but outscored"), std::string::npos)
+        << "both models accept the whole view";
+    if (!join) {
+      EXPECT_TRUE(third[0].joined_models.empty());
+      EXPECT_EQ(database.models().size(), 2u);
+      continue;
+    }
+    ASSERT_EQ(third[0].joined_models.size(), 1u);
+    ASSERT_EQ(database.models().size(), 1u);
+    const ObjectModel& model = database.models()[0];
+    EXPECT_EQ(model.id, third[0].model_id);
+    EXPECT_EQ(database.findModel(third[0].joined_models[0]), nullptr) << "its id is retired";
+    ASSERT_EQ(model.instances.size(), 3u);
+    EXPECT_EQ(model.merged_observations, 3);
+    // Every instance places the model where the object stood: relative poses as the truth's.
+    const ObjectInstance* i1 = instanceOf(model, 1);
+    const ObjectInstance* i2 = instanceOf(model, 2);
+    const ObjectInstance* i3 = instanceOf(model, 3);
+    ASSERT_TRUE(i1 && i2 && i3);
+    for (const auto& [a, ta] : {std::pair{i1, &left}, std::pair{i2, &right}}) {
+      const Eigen::Isometry3d truth = whole.T_W_P() * ta->T_W_P().inverse();
+      const Eigen::Isometry3d estimate = i3->T_W_M * a->T_W_M.inverse();
+      const Eigen::Vector3d centre_W = ta->T_W_P() * Eigen::Vector3d(0.0, 0.0, 0.2);
+      EXPECT_LT((truth * centre_W - estimate * centre_W).norm(), 0.03) << "session " << a->session;
+      const double angle_deg =
+          Eigen::AngleAxisd(truth.linear() * estimate.linear().transpose()).angle() * 180.0 / kPi;
+      EXPECT_LT(angle_deg, 3.0) << "session " << a->session;
+    }
+  }
+}
+
 TEST(ObjectDatabase, ConfigIsValidated) {
   DatabaseConfig config;
   config.registration.ransac_iterations = 0;

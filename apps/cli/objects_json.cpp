@@ -51,6 +51,11 @@ void writeModel(std::ostream& out, const objects::ObjectModel& m, const std::str
 void writeOutcome(std::ostream& out, const objects::SegmentOutcome& o, const std::string& pad) {
   out << pad << "{\"session\": " << o.session << ", \"segment\": " << o.segment_id
       << ", \"model\": " << o.model_id << ", \"new_model\": " << (o.new_model ? "true" : "false")
+      << ", \"joined_models\": [";
+  for (std::size_t i = 0; i < o.joined_models.size(); ++i) {
+    out << (i ? ", " : "") << o.joined_models[i];
+  }
+  out << "]"
       << ", \"skipped\": " << jsonQuoted(o.skipped) << ", \"candidates\": " << o.candidates
       << ", \"registrations\": " << o.registrations << ", \"score\": " << jsonNumber(o.score)
       << ", \"fitness\": " << jsonNumber(o.registration.fitness)

@@ -172,14 +172,25 @@ std::vector<object_update_t> MapperCore::objectUpdatesOf(const SessionResult& re
   std::map<int, bool> touched;  // model id -> founded by this session
   for (const objects::SegmentOutcome& o : outcomes) {
     if (o.model_id > 0) touched[o.model_id] = touched[o.model_id] || o.new_model;
+    for (const int joined : o.joined_models) touched[joined] = false;
   }
-  std::vector<object_update_t> updates;
-  int index = 0;
+  // A model joined into another (retired) goes out as its id with no instances and no mesh.
+  std::vector<objects::ObjectModel> retired;
+  retired.reserve(touched.size());  // no reallocation: `sent` points into it
+  std::vector<std::pair<const objects::ObjectModel*, bool>> sent;  // model, founded
   for (const auto& [id, founded] : touched) {
     const objects::ObjectModel* model = objects_->findModel(id);
-    if (model == nullptr) continue;
-    updates.push_back(lcm_io::encodeObjectUpdate(*model, session, founded, ++index,
-                                                 static_cast<int>(touched.size()), utime));
+    if (model == nullptr) {
+      retired.emplace_back().id = id;
+      model = &retired.back();
+    }
+    sent.emplace_back(model, founded);
+  }
+  std::vector<object_update_t> updates;
+  for (std::size_t i = 0; i < sent.size(); ++i) {
+    updates.push_back(lcm_io::encodeObjectUpdate(*sent[i].first, session, sent[i].second,
+                                                 static_cast<int>(i) + 1,
+                                                 static_cast<int>(sent.size()), utime));
   }
   return updates;
 }

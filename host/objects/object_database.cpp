@@ -165,7 +165,8 @@ SegmentOutcome ObjectDatabase::addSegment(int session, const TsdfMap& session_ma
     outcome.ms = msSince(start);
     return outcome;
   }
-  const Match best = bestMatch(observation, session_map, outcome);
+  std::vector<Match> also_accepted;
+  const Match best = bestMatch(observation, session_map, outcome, also_accepted);
   const float spacing_m =
       config_.observation.sample_spacing_voxels * config_.registration.voxel_size_m;
   ObjectInstance instance;
@@ -189,6 +190,9 @@ SegmentOutcome ObjectDatabase::addSegment(int session, const TsdfMap& session_ma
     outcome.score = best.score;
     outcome.registration = best.registration;
     outcome.consistency = best.consistency;
+    if (config_.join_duplicates && !also_accepted.empty()) {
+      joinDuplicates(best.model_id, best, also_accepted, observation, session_map, outcome);
+    }
   } else {
     models_.push_back(foundModel(next_id_++, observation, config_.model));
     outcome.model_id = models_.back().id;
@@ -202,10 +206,10 @@ SegmentOutcome ObjectDatabase::addSegment(int session, const TsdfMap& session_ma
 }
 
 ObjectDatabase::Match ObjectDatabase::bestMatch(const ObjectObservation& observation,
-                                                const TsdfMap& session_map,
-                                                SegmentOutcome& outcome) const {
+                                                const TsdfMap& session_map, SegmentOutcome& outcome,
+                                                std::vector<Match>& also_accepted) const {
   Match best;
-  std::vector<std::pair<int, double>> accepted;  // model id, score
+  std::vector<Match> accepted;
   const std::vector<int> candidates =
       prefilter_.candidates(observation.extent_m, observation.mean_color);
   outcome.candidates = static_cast<int>(candidates.size());
@@ -250,19 +254,85 @@ ObjectDatabase::Match ObjectDatabase::bestMatch(const ObjectObservation& observa
                         ") < min_match_score " + std::to_string(config_.min_match_score));
       continue;
     }
-    accepted.emplace_back(id, score);
-    if (score > best.score) best = {id, score, registration, consistency};
+    accepted.push_back({id, score, registration, consistency});
+    if (score > best.score) best = accepted.back();
   }
   // Accepted but outscored candidates are reported too: two models that both accept one
   // observation are near duplicates (or identical shapes) worth knowing about.
-  for (const auto& [id, score] : accepted) {
-    if (id != best.model_id) {
-      appendRefusal(outcome.refused, id,
-                    "accepted but outscored (" + std::to_string(score) + " < " +
-                        std::to_string(best.score) + ")");
-    }
+  std::sort(accepted.begin(), accepted.end(),
+            [](const Match& a, const Match& b) { return a.score > b.score; });
+  also_accepted.clear();
+  for (const Match& m : accepted) {
+    if (m.model_id == best.model_id) continue;
+    appendRefusal(outcome.refused, m.model_id,
+                  "accepted but outscored (" + std::to_string(m.score) + " < " +
+                      std::to_string(best.score) + ")");
+    also_accepted.push_back(m);
   }
   return best;
+}
+
+void ObjectDatabase::joinDuplicates(int keep_id, const Match& best,
+                                    const std::vector<Match>& others,
+                                    const ObjectObservation& observation,
+                                    const TsdfMap& session_map, SegmentOutcome& outcome) {
+  auto byId = [this](int id) {
+    return std::find_if(models_.begin(), models_.end(),
+                        [id](const ObjectModel& m) { return m.id == id; });
+  };
+  const Eigen::Isometry3d T_K_O = best.registration.T_target_source;
+  for (const Match& other : others) {
+    const auto dup = byId(other.model_id);
+    if (dup == models_.end()) continue;
+    // The duplicate as an observation of this session, where the observation placed it.
+    const Eigen::Isometry3d T_D_O = other.registration.T_target_source;
+    const Eigen::Isometry3d T_K_D = T_K_O * T_D_O.inverse();
+    ObjectObservation as_seen;
+    as_seen.session = observation.session;
+    as_seen.segment_id = observation.segment_id;
+    as_seen.T_W_O = observation.T_W_O * T_D_O.inverse();
+    as_seen.tsdf = dup->tsdf;
+    as_seen.surface_O = dup->surface_M;
+    as_seen.extent_m = dup->extent_m;
+    as_seen.surface_area_m2 = dup->surface_area_m2;
+    as_seen.mean_color = dup->mean_color;
+    ObjectModel& keep = *byId(keep_id);
+    // As between an observation and a model: spans from the floor must agree in height (an
+    // ambiguous view of a crate is accepted by crates of two heights; joining them is the ball
+    // of doom).
+    if (keep.instances.empty() || dup->instances.empty()) continue;
+    const bool compare_heights = !config_.height_check_grounded_only ||
+                                 (grounded(keep.surface_M, keep.instances.front().T_W_M) &&
+                                  grounded(dup->surface_M, dup->instances.front().T_W_M));
+    const std::string mismatch = compare_heights ? heightMismatch(heightOf(dup->surface_M),
+                                                                  heightOf(keep.surface_M), config_)
+                                                 : std::string();
+    if (!mismatch.empty()) {
+      appendRefusal(outcome.refused, dup->id, "not joined: " + mismatch);
+      continue;
+    }
+    const ConsistencyResult check =
+        checkConsistency(keep, as_seen, T_K_D, session_map, config_.consistency);
+    if (!check.accepted) {
+      appendRefusal(outcome.refused, dup->id, "not joined: " + check.reason);
+      continue;
+    }
+    if (config_.merge) mergeObservation(keep, as_seen, T_K_D, config_.model);
+    keep.merged_observations += dup->merged_observations;
+    // T_W_K = T_W_D T_K_D^-1 for every session the duplicate stood in.
+    for (ObjectInstance instance : dup->instances) {
+      instance.T_W_M = instance.T_W_M * T_K_D.inverse();
+      keep.instances.push_back(instance);
+    }
+    outcome.joined_models.push_back(dup->id);
+    prefilter_.remove(dup->id);
+    models_.erase(dup);
+  }
+  if (!outcome.joined_models.empty() && config_.merge) {
+    const float spacing_m =
+        config_.observation.sample_spacing_voxels * config_.registration.voxel_size_m;
+    refreshModel(*byId(keep_id), spacing_m, config_.model);
+  }
 }
 
 bool ObjectDatabase::grounded(const SurfaceCloud& cloud, const Eigen::Isometry3d& T_W_X) const {

@@ -62,6 +62,12 @@ struct DatabaseConfig {
   float grounded_tolerance_voxels = 4.0f;
   /// Merge an accepted observation into the model (false: only record the instance).
   bool merge = true;
+  /// An observation that two or more models accept shows them to be one object seen in parts:
+  /// each other accepted model is checked against the best one (the same consistency check, the
+  /// other model as the observation, placed by the two registrations) and, when it passes,
+  /// joined into it (TSDF averaged, instances moved; its id is retired). false: they stay apart
+  /// ("accepted but outscored" in the outcome).
+  bool join_duplicates = true;
   void validate() const;  // InputError naming the bad field
 };
 
@@ -78,7 +84,10 @@ struct SegmentOutcome {
   RegistrationResult registration;  // of the accepted match
   ConsistencyResult consistency;    // of the accepted match
   std::string refused;              // summary of the candidates refused and why ("" when none)
-  double ms = 0.0;                  // observation + matching + merge
+  /// Models joined into model_id because this observation showed them to be the same object
+  /// (DatabaseConfig::join_duplicates); their ids no longer exist.
+  std::vector<int> joined_models;
+  double ms = 0.0;  // observation + matching + merge
 };
 
 class ObjectDatabase {
@@ -117,8 +126,14 @@ class ObjectDatabase {
   SegmentOutcome addSegment(int session, const TsdfMap& session_map,
                             const change::LabelledSurface& surface,
                             const change::DiscoveredObject& segment);
+  /// The best accepted candidate; the other accepted ones, best first, go to `also_accepted`.
   Match bestMatch(const ObjectObservation& observation, const TsdfMap& session_map,
-                  SegmentOutcome& outcome) const;
+                  SegmentOutcome& outcome, std::vector<Match>& also_accepted) const;
+  /// Joins each of `others` into model `keep_id` where the consistency check passes
+  /// (DatabaseConfig::join_duplicates).
+  void joinDuplicates(int keep_id, const Match& best, const std::vector<Match>& others,
+                      const ObjectObservation& observation, const TsdfMap& session_map,
+                      SegmentOutcome& outcome);
   /// Whether the lowest point of `cloud`, placed by T_W_X, lies within the grounded tolerance of
   /// the current session's floor.
   bool grounded(const SurfaceCloud& cloud, const Eigen::Isometry3d& T_W_X) const;

@@ -43,6 +43,12 @@ ModelPrefilter::ModelPrefilter(const PrefilterConfig& config) : config_(config) 
   config_.validate();
 }
 
+void ModelPrefilter::remove(int id) {
+  entries_.erase(
+      std::remove_if(entries_.begin(), entries_.end(), [id](const Entry& e) { return e.id == id; }),
+      entries_.end());
+}
+
 void ModelPrefilter::upsert(int id, const Eigen::Vector3f& extent_m,
                             const Eigen::Vector3f& mean_color) {
   requireDescriptor(extent_m, mean_color);

@@ -21,6 +21,8 @@ class ModelPrefilter {
   explicit ModelPrefilter(const PrefilterConfig& config = {});
   /// Adds or updates the descriptor of model `id`.
   void upsert(int id, const Eigen::Vector3f& extent_m, const Eigen::Vector3f& mean_color);
+  /// Forgets model `id` (nothing when absent).
+  void remove(int id);
   /// Ids of the models a segment with these descriptors may match, nearest extent first.
   std::vector<int> candidates(const Eigen::Vector3f& extent_m,
                               const Eigen::Vector3f& mean_color) const;
