@@ -85,7 +85,10 @@ bool ExplorationLoop::pathAheadBlocked() {
                                         : *impl_->checker;
   const PathFollower& follower = impl_->follower;
   const Eigen::Vector3f& here_W = follower.pose().position_W;
-  float radius_m = config_.checkRadius();
+  // Half the planners' margin: brake for what the path would truly come near, not for every
+  // voxel the plan's margin no longer clears (braking there stopped the robot by door frames
+  // where the planners could not go on: office seed 4 at 76.7 % instead of 99 %).
+  float radius_m = config_.robot.radius_m + 0.5f * (config_.checkRadius() - config_.robot.radius_m);
   if (!checker.spheresFree({here_W}, radius_m, UnknownPolicy::kOccupied)[0]) {
     radius_m = config_.robot.radius_m;
     // Already touching something the map did not hold: the path decides, not this check.

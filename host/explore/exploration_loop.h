@@ -66,8 +66,8 @@ struct ExplorationConfig {
   bool surface_hits = true;
   /// In flight, after every fused frame, the path ahead (inflight_lookahead_m of it) is checked
   /// again against the surface hits of that frame and the ESDF of the last planning step (which
-  /// passed it through space seen free), with the check radius, or the robot's
-  /// radius where the robot is already closer than the check radius to something (it may fly
+  /// passed it through space seen free), with the robot's radius + half the margin, or the robot's
+  /// radius where the robot is already closer than that to something (it may fly
   /// away from it, not nearer): blocked, the robot brakes to rest and the planner is asked
   /// again. false: paths are flown as planned.
   bool inflight_checks = true;
