@@ -227,6 +227,32 @@ TEST(ObjectDatabase, HeightsAreComparedOnlyBetweenSpansFromTheFloor) {
   }
 }
 
+// The box seen without its top (a crate in front hid the upper part): as a lower bound
+// (open_top_is_lower_bound, off by default) being lower than the model is no reason to refuse
+// it; taken as exact, it is refused.
+TEST(ObjectDatabase, ASpanWhoseTopWasNotSeenIsALowerBound) {
+  const test::Thing hidden_top{
+      test::boxShapeSdf, {0.6, 0.7}, 100.0, [](const Eigen::Vector3d& p) { return p.z() < 0.2; }};
+  const Session first = makeSession({kBox}, 1);
+  const Session second = makeSession({hidden_top}, 2);
+  for (const bool lower_bound : {true, false}) {
+    DatabaseConfig config;
+    config.open_top_is_lower_bound = lower_bound;
+    ObjectDatabase database(config);
+    const std::vector<SegmentOutcome> outcomes = addTwo(database, first, second);
+    ASSERT_EQ(outcomes.size(), 1u);
+    std::printf("lower bound %d: model %d, %d registrations, refused: %s\n", lower_bound,
+                outcomes[0].model_id, outcomes[0].registrations, outcomes[0].refused.c_str());
+    if (lower_bound) {
+      EXPECT_EQ(outcomes[0].registrations, 1);
+      EXPECT_EQ(outcomes[0].refused.find("height"), std::string::npos) << outcomes[0].refused;
+    } else {
+      EXPECT_EQ(outcomes[0].registrations, 0);
+      EXPECT_NE(outcomes[0].refused.find("(top unseen)"), std::string::npos) << outcomes[0].refused;
+    }
+  }
+}
+
 /// A wall with a wing at its left end (+y) and a round post at its right end (-y).
 double wingAndPostSdf(const Eigen::Vector3d& p) {
   const Eigen::AlignedBox3d wall(Eigen::Vector3d(-0.3, -0.1, -0.1),

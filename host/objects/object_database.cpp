@@ -77,15 +77,51 @@ float floorHeight(const Mesh& surface) {
   return std::isfinite(floor_z) ? static_cast<float>(floor_z) : 0.0f;
 }
 
-/// "" when the heights agree within the config's tolerance (or the check is off), else why not.
-std::string heightMismatch(float observation_m, float model_m, const DatabaseConfig& config) {
+/// A vertical span and whether its top was seen (a top face: among the samples within 1.5
+/// voxels of the highest, at least 5 and 30 % face up). An unseen top makes the height a lower
+/// bound: the part above was hidden, not absent.
+struct Span {
+  float height_m = 0.0f;
+  bool top_seen = false;
+};
+
+Span spanOf(const SurfaceCloud& cloud, float voxel_m) {
+  Span span;
+  span.height_m = heightOf(cloud);
+  if (cloud.empty() || cloud.normals.size() != cloud.points.size()) return span;
+  float high = cloud.points.front().z();
+  for (const Eigen::Vector3f& p : cloud.points) high = std::max(high, p.z());
+  std::size_t near_top = 0, facing_up = 0;
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    if (cloud.points[i].z() < high - 1.5f * voxel_m) continue;
+    ++near_top;
+    facing_up += cloud.normals[i].z() > 0.7f ? 1 : 0;
+  }
+  span.top_seen = facing_up >= 5 && facing_up >= 0.3 * static_cast<double>(near_top);
+  return span;
+}
+
+/// "" when the spans agree within the config's tolerance (or the check is off), else why not.
+/// With open_top_is_lower_bound, a span whose top was not seen may be the lower of the two by
+/// any amount, never the higher beyond the tolerance.
+std::string heightMismatch(const Span& observation, const Span& model,
+                           const DatabaseConfig& config) {
   if (config.max_height_difference_ratio <= 0.0f) return "";
   const float tolerance_m =
       std::max(config.max_height_difference_voxels * config.registration.voxel_size_m,
-               config.max_height_difference_ratio * std::max(observation_m, model_m));
-  if (std::abs(observation_m - model_m) <= tolerance_m) return "";
-  return "height " + std::to_string(observation_m) + " m against the model's " +
-         std::to_string(model_m) + " m (tolerance " + std::to_string(tolerance_m) + " m)";
+               config.max_height_difference_ratio * std::max(observation.height_m, model.height_m));
+  const float excess_m = observation.height_m - model.height_m;  // > 0: the observation higher
+  const bool lower_may_be_partial = config.open_top_is_lower_bound;
+  const bool observation_open = lower_may_be_partial && !observation.top_seen;
+  const bool model_open = lower_may_be_partial && !model.top_seen;
+  if (std::abs(excess_m) <= tolerance_m) return "";
+  if (excess_m < 0.0f && observation_open) return "";  // the observation's top was hidden
+  if (excess_m > 0.0f && model_open) return "";        // the model's top was never seen
+  auto describe = [](const Span& span) {
+    return std::to_string(span.height_m) + " m" + (span.top_seen ? "" : " (top unseen)");
+  };
+  return "height " + describe(observation) + " against the model's " + describe(model) +
+         " (tolerance " + std::to_string(tolerance_m) + " m)";
 }
 
 }  // namespace
@@ -213,7 +249,8 @@ ObjectDatabase::Match ObjectDatabase::bestMatch(const ObjectObservation& observa
   const std::vector<int> candidates =
       prefilter_.candidates(observation.extent_m, observation.mean_color);
   outcome.candidates = static_cast<int>(candidates.size());
-  const float observation_height_m = heightOf(observation.surface_O);
+  const float voxel_m = config_.registration.voxel_size_m;
+  const Span observation_span = spanOf(observation.surface_O, voxel_m);
   const bool observation_grounded =
       !config_.height_check_grounded_only || grounded(observation.surface_O, observation.T_W_O);
   for (const int id : candidates) {
@@ -224,8 +261,9 @@ ObjectDatabase::Match ObjectDatabase::bestMatch(const ObjectObservation& observa
         (!config_.height_check_grounded_only ||
          (!model->instances.empty() && grounded(model->surface_M, model->instances.front().T_W_M)));
     const std::string mismatch =
-        compare_heights ? heightMismatch(observation_height_m, heightOf(model->surface_M), config_)
-                        : std::string();
+        compare_heights
+            ? heightMismatch(observation_span, spanOf(model->surface_M, voxel_m), config_)
+            : std::string();
     if (!mismatch.empty()) {
       appendRefusal(outcome.refused, id, mismatch);
       continue;
@@ -304,9 +342,11 @@ void ObjectDatabase::joinDuplicates(int keep_id, const Match& best,
     const bool compare_heights = !config_.height_check_grounded_only ||
                                  (grounded(keep.surface_M, keep.instances.front().T_W_M) &&
                                   grounded(dup->surface_M, dup->instances.front().T_W_M));
-    const std::string mismatch = compare_heights ? heightMismatch(heightOf(dup->surface_M),
-                                                                  heightOf(keep.surface_M), config_)
-                                                 : std::string();
+    const float voxel_m = config_.registration.voxel_size_m;
+    const std::string mismatch = compare_heights
+                                     ? heightMismatch(spanOf(dup->surface_M, voxel_m),
+                                                      spanOf(keep.surface_M, voxel_m), config_)
+                                     : std::string();
     if (!mismatch.empty()) {
       appendRefusal(outcome.refused, dup->id, "not joined: " + mismatch);
       continue;
