@@ -196,6 +196,20 @@ TEST(ObjectDatabase, BoxesOfDifferentHeightsFoundTwoModels) {
   }
 }
 
+/// Adds a session of `kBox` (1), then one of `second` (2), with `config`: the second's single
+/// outcome, printed with `what`.
+SegmentOutcome secondAgainstTheBox(const DatabaseConfig& config, const test::Thing& second,
+                                   const char* what) {
+  ObjectDatabase database(config);
+  const std::vector<SegmentOutcome> outcomes =
+      addTwo(database, makeSession({kBox}, 1), makeSession({second}, 2));
+  EXPECT_EQ(outcomes.size(), 1u);
+  if (outcomes.empty()) return {};
+  std::printf("%s: model %d, %d registrations, refused: %s\n", what, outcomes[0].model_id,
+              outcomes[0].registrations, outcomes[0].refused.c_str());
+  return outcomes[0];
+}
+
 // A part of an object off the floor (0.15 m up: a fragment above thin legs) has a span that says
 // nothing of the whole: the height check leaves it to registration and the consistency check,
 // unless told to compare every pair.
@@ -207,24 +221,14 @@ TEST(ObjectDatabase, HeightsAreComparedOnlyBetweenSpansFromTheFloor) {
                              },
                              {0.6, 0.7},
                              100.0};
-  const Session first = makeSession({kBox}, 1);
-  const Session second = makeSession({floating}, 2);
-  for (const bool grounded_only : {true, false}) {
-    DatabaseConfig config;
-    config.height_check_grounded_only = grounded_only;
-    ObjectDatabase database(config);
-    const std::vector<SegmentOutcome> outcomes = addTwo(database, first, second);
-    ASSERT_EQ(outcomes.size(), 1u);
-    std::printf("grounded only %d: model %d, %d registrations, refused: %s\n", grounded_only,
-                outcomes[0].model_id, outcomes[0].registrations, outcomes[0].refused.c_str());
-    if (grounded_only) {
-      EXPECT_EQ(outcomes[0].refused.find("height"), std::string::npos) << outcomes[0].refused;
-      EXPECT_EQ(outcomes[0].registrations, 1);
-    } else {
-      EXPECT_NE(outcomes[0].refused.find("height"), std::string::npos) << outcomes[0].refused;
-      EXPECT_EQ(outcomes[0].registrations, 0);
-    }
-  }
+  DatabaseConfig config;
+  const SegmentOutcome grounded_only = secondAgainstTheBox(config, floating, "grounded only");
+  EXPECT_EQ(grounded_only.refused.find("height"), std::string::npos) << grounded_only.refused;
+  EXPECT_EQ(grounded_only.registrations, 1);
+  config.height_check_grounded_only = false;
+  const SegmentOutcome every_pair = secondAgainstTheBox(config, floating, "every pair");
+  EXPECT_NE(every_pair.refused.find("height"), std::string::npos) << every_pair.refused;
+  EXPECT_EQ(every_pair.registrations, 0);
 }
 
 // The box seen without its top (a crate in front hid the upper part): as a lower bound
@@ -233,24 +237,15 @@ TEST(ObjectDatabase, HeightsAreComparedOnlyBetweenSpansFromTheFloor) {
 TEST(ObjectDatabase, ASpanWhoseTopWasNotSeenIsALowerBound) {
   const test::Thing hidden_top{
       test::boxShapeSdf, {0.6, 0.7}, 100.0, [](const Eigen::Vector3d& p) { return p.z() < 0.2; }};
-  const Session first = makeSession({kBox}, 1);
-  const Session second = makeSession({hidden_top}, 2);
-  for (const bool lower_bound : {true, false}) {
-    DatabaseConfig config;
-    config.open_top_is_lower_bound = lower_bound;
-    ObjectDatabase database(config);
-    const std::vector<SegmentOutcome> outcomes = addTwo(database, first, second);
-    ASSERT_EQ(outcomes.size(), 1u);
-    std::printf("lower bound %d: model %d, %d registrations, refused: %s\n", lower_bound,
-                outcomes[0].model_id, outcomes[0].registrations, outcomes[0].refused.c_str());
-    if (lower_bound) {
-      EXPECT_EQ(outcomes[0].registrations, 1);
-      EXPECT_EQ(outcomes[0].refused.find("height"), std::string::npos) << outcomes[0].refused;
-    } else {
-      EXPECT_EQ(outcomes[0].registrations, 0);
-      EXPECT_NE(outcomes[0].refused.find("(top unseen)"), std::string::npos) << outcomes[0].refused;
-    }
-  }
+  DatabaseConfig config;
+  config.open_top_is_lower_bound = true;
+  const SegmentOutcome bound = secondAgainstTheBox(config, hidden_top, "lower bound");
+  EXPECT_EQ(bound.registrations, 1);
+  EXPECT_EQ(bound.refused.find("height"), std::string::npos) << bound.refused;
+  config.open_top_is_lower_bound = false;
+  const SegmentOutcome exact = secondAgainstTheBox(config, hidden_top, "exact");
+  EXPECT_EQ(exact.registrations, 0);
+  EXPECT_NE(exact.refused.find("(top unseen)"), std::string::npos) << exact.refused;
 }
 
 /// A wall with a wing at its left end (+y) and a round post at its right end (-y).
