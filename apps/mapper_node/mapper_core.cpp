@@ -175,22 +175,15 @@ std::vector<object_update_t> MapperCore::objectUpdatesOf(const SessionResult& re
     for (const int joined : o.joined_models) touched[joined] = false;
   }
   // A model joined into another (retired) goes out as its id with no instances and no mesh.
-  std::vector<objects::ObjectModel> retired;
-  retired.reserve(touched.size());  // no reallocation: `sent` points into it
-  std::vector<std::pair<const objects::ObjectModel*, bool>> sent;  // model, founded
+  std::vector<object_update_t> updates;
+  const int count = static_cast<int>(touched.size());
   for (const auto& [id, founded] : touched) {
     const objects::ObjectModel* model = objects_->findModel(id);
-    if (model == nullptr) {
-      retired.emplace_back().id = id;
-      model = &retired.back();
-    }
-    sent.emplace_back(model, founded);
-  }
-  std::vector<object_update_t> updates;
-  for (std::size_t i = 0; i < sent.size(); ++i) {
-    updates.push_back(lcm_io::encodeObjectUpdate(*sent[i].first, session, sent[i].second,
-                                                 static_cast<int>(i) + 1,
-                                                 static_cast<int>(sent.size()), utime));
+    objects::ObjectModel retired;
+    retired.id = id;
+    updates.push_back(lcm_io::encodeObjectUpdate(
+        model != nullptr ? *model : retired, session, founded && model != nullptr,
+        static_cast<int>(updates.size()) + 1, count, utime));
   }
   return updates;
 }

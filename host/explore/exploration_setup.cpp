@@ -112,6 +112,7 @@ void ExplorationConfig::validate() const {
     throw InputError("start clearing sizes must be > 0");
   }
   if (max_idle_steps < 1) throw InputError("max_idle_steps must be >= 1");
+  if (!positive(inflight_lookahead_m)) throw InputError("inflight_lookahead_m must be > 0");
 }
 
 Eigen::Isometry3d cameraPose(const RobotPose& pose) {

@@ -99,23 +99,19 @@ void PathFollower::beginNext() {
 }
 
 double PathFollower::brake() {
-  if (phase_ == Phase::kBraking) return 0.5 * speed_mps_ * speed_mps_ / config_.max_accel_mps2;
-  const bool in_motion = phase_ == Phase::kMoving && speed_mps_ > 0.0;
-  if (in_motion) {
+  if (phase_ == Phase::kMoving && speed_mps_ > 0.0) {
     // Straight segments: the direction of travel is the segment's.
     brake_dir_W_ = (path_[next_].position_W - segment_start_W_).normalized();
     brake_start_W_ = pose_.position_W;
     brake_speed_mps_ = speed_mps_;
     phase_time_s_ = 0.0;
+    phase_ = Phase::kBraking;
+  } else if (phase_ != Phase::kBraking) {
+    phase_ = Phase::kIdle;
+    speed_mps_ = 0.0;
   }
   path_.clear();
   next_ = 0;
-  if (!in_motion) {
-    phase_ = Phase::kIdle;
-    speed_mps_ = 0.0;
-    return 0.0;
-  }
-  phase_ = Phase::kBraking;
   return 0.5 * speed_mps_ * speed_mps_ / config_.max_accel_mps2;
 }
 

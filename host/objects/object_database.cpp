@@ -56,17 +56,6 @@ void appendPlaced(const Mesh& mesh, const Eigen::Isometry3d& T_W_M, Mesh& out) {
   }
 }
 
-/// Vertical span (m) of a cloud whose frame shares the world's vertical.
-float heightOf(const SurfaceCloud& cloud) {
-  if (cloud.empty()) return 0.0f;
-  float low = cloud.points.front().z(), high = low;
-  for (const Eigen::Vector3f& p : cloud.points) {
-    low = std::min(low, p.z());
-    high = std::max(high, p.z());
-  }
-  return high - low;
-}
-
 /// The floor's height under a session: the 2nd percentile of its surface vertices' heights
 /// (world z; 0 for an empty surface).
 float floorHeight(const Mesh& surface) {
@@ -87,10 +76,14 @@ struct Span {
 
 Span spanOf(const SurfaceCloud& cloud, float voxel_m) {
   Span span;
-  span.height_m = heightOf(cloud);
-  if (cloud.empty() || cloud.normals.size() != cloud.points.size()) return span;
-  float high = cloud.points.front().z();
-  for (const Eigen::Vector3f& p : cloud.points) high = std::max(high, p.z());
+  if (cloud.empty()) return span;
+  float low = cloud.points.front().z(), high = low;
+  for (const Eigen::Vector3f& p : cloud.points) {
+    low = std::min(low, p.z());
+    high = std::max(high, p.z());
+  }
+  span.height_m = high - low;
+  if (cloud.normals.size() != cloud.points.size()) return span;
   std::size_t near_top = 0, facing_up = 0;
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     if (cloud.points[i].z() < high - 1.5f * voxel_m) continue;
@@ -249,21 +242,10 @@ ObjectDatabase::Match ObjectDatabase::bestMatch(const ObjectObservation& observa
   const std::vector<int> candidates =
       prefilter_.candidates(observation.extent_m, observation.mean_color);
   outcome.candidates = static_cast<int>(candidates.size());
-  const float voxel_m = config_.registration.voxel_size_m;
-  const Span observation_span = spanOf(observation.surface_O, voxel_m);
-  const bool observation_grounded =
-      !config_.height_check_grounded_only || grounded(observation.surface_O, observation.T_W_O);
   for (const int id : candidates) {
     const ObjectModel* model = findModel(id);
     if (model == nullptr || model->surface_M.empty()) continue;
-    const bool compare_heights =
-        observation_grounded &&
-        (!config_.height_check_grounded_only ||
-         (!model->instances.empty() && grounded(model->surface_M, model->instances.front().T_W_M)));
-    const std::string mismatch =
-        compare_heights
-            ? heightMismatch(observation_span, spanOf(model->surface_M, voxel_m), config_)
-            : std::string();
+    const std::string mismatch = heightRefusal(observation.surface_O, observation.T_W_O, *model);
     if (!mismatch.empty()) {
       appendRefusal(outcome.refused, id, mismatch);
       continue;
@@ -322,6 +304,16 @@ void ObjectDatabase::joinDuplicates(int keep_id, const Match& best,
   for (const Match& other : others) {
     const auto dup = byId(other.model_id);
     if (dup == models_.end()) continue;
+    ObjectModel& keep = *byId(keep_id);
+    if (dup->instances.empty()) continue;
+    // As between an observation (the duplicate) and a model: spans from the floor must agree in
+    // height (an ambiguous view of a crate is accepted by crates of two heights; joining them is
+    // the ball of doom).
+    const std::string mismatch = heightRefusal(dup->surface_M, dup->instances.front().T_W_M, keep);
+    if (!mismatch.empty()) {
+      appendRefusal(outcome.refused, dup->id, "not joined: " + mismatch);
+      continue;
+    }
     // The duplicate as an observation of this session, where the observation placed it.
     const Eigen::Isometry3d T_D_O = other.registration.T_target_source;
     const Eigen::Isometry3d T_K_D = T_K_O * T_D_O.inverse();
@@ -334,23 +326,6 @@ void ObjectDatabase::joinDuplicates(int keep_id, const Match& best,
     as_seen.extent_m = dup->extent_m;
     as_seen.surface_area_m2 = dup->surface_area_m2;
     as_seen.mean_color = dup->mean_color;
-    ObjectModel& keep = *byId(keep_id);
-    // As between an observation and a model: spans from the floor must agree in height (an
-    // ambiguous view of a crate is accepted by crates of two heights; joining them is the ball
-    // of doom).
-    if (keep.instances.empty() || dup->instances.empty()) continue;
-    const bool compare_heights = !config_.height_check_grounded_only ||
-                                 (grounded(keep.surface_M, keep.instances.front().T_W_M) &&
-                                  grounded(dup->surface_M, dup->instances.front().T_W_M));
-    const float voxel_m = config_.registration.voxel_size_m;
-    const std::string mismatch = compare_heights
-                                     ? heightMismatch(spanOf(dup->surface_M, voxel_m),
-                                                      spanOf(keep.surface_M, voxel_m), config_)
-                                     : std::string();
-    if (!mismatch.empty()) {
-      appendRefusal(outcome.refused, dup->id, "not joined: " + mismatch);
-      continue;
-    }
     const ConsistencyResult check =
         checkConsistency(keep, as_seen, T_K_D, session_map, config_.consistency);
     if (!check.accepted) {
@@ -373,6 +348,18 @@ void ObjectDatabase::joinDuplicates(int keep_id, const Match& best,
         config_.observation.sample_spacing_voxels * config_.registration.voxel_size_m;
     refreshModel(*byId(keep_id), spacing_m, config_.model);
   }
+}
+
+std::string ObjectDatabase::heightRefusal(const SurfaceCloud& cloud, const Eigen::Isometry3d& T_W_X,
+                                          const ObjectModel& model) const {
+  if (model.instances.empty()) return "";
+  const Eigen::Isometry3d& T_W_M = model.instances.front().T_W_M;
+  if (config_.height_check_grounded_only &&
+      !(grounded(cloud, T_W_X) && grounded(model.surface_M, T_W_M))) {
+    return "";
+  }
+  const float voxel_m = config_.registration.voxel_size_m;
+  return heightMismatch(spanOf(cloud, voxel_m), spanOf(model.surface_M, voxel_m), config_);
 }
 
 bool ObjectDatabase::grounded(const SurfaceCloud& cloud, const Eigen::Isometry3d& T_W_X) const {

@@ -56,8 +56,8 @@ struct DatabaseConfig {
   /// above its thin legs) is a part whose span says nothing of the whole. NOTE: an object on a
   /// desk is not grounded either: over 8 office sessions a printer on a desk joined an archive
   /// box's model. Up-facing static faces beside the footprint as the supports instead fixed that
-  /// but missed crates on the floor (their surrounding floor faces are labelled dynamic): the
-  /// warehouse fell to 93.9 % precision, and as well as the floor, to the same. So the floor it is.
+  /// but the warehouse fell to 93.9 % precision, with supports instead of the floor and as well as
+  /// it alike (cause not pinned down: the matching is path dependent). So the floor it is.
   /// The floor is the 2nd percentile of the session surface's heights (the world frame's z is
   /// up and shared by the sessions). false: every pair is compared. Measured (demo, 5 sessions):
   /// office recall 25.0 -> 33.3 %, warehouse precision 93.2 -> 100 %, the room unchanged
@@ -74,8 +74,9 @@ struct DatabaseConfig {
   /// Merge an accepted observation into the model (false: only record the instance).
   bool merge = true;
   /// An observation that two or more models accept shows them to be one object seen in parts:
-  /// each other accepted model is checked against the best one (the same consistency check, the
-  /// other model as the observation, placed by the two registrations) and, when it passes,
+  /// each other accepted model is checked against the best one (the height check, and the same
+  /// consistency check with the other model as the observation, placed by the two
+  /// registrations) and, when both pass,
   /// joined into it (TSDF averaged, instances moved; its id is retired). false: they stay apart
   /// ("accepted but outscored" in the outcome).
   bool join_duplicates = true;
@@ -140,11 +141,15 @@ class ObjectDatabase {
   /// The best accepted candidate; the other accepted ones, best first, go to `also_accepted`.
   Match bestMatch(const ObjectObservation& observation, const TsdfMap& session_map,
                   SegmentOutcome& outcome, std::vector<Match>& also_accepted) const;
-  /// Joins each of `others` into model `keep_id` where the consistency check passes
+  /// Joins each of `others` into model `keep_id` where the height and consistency checks pass
   /// (DatabaseConfig::join_duplicates).
   void joinDuplicates(int keep_id, const Match& best, const std::vector<Match>& others,
                       const ObjectObservation& observation, const TsdfMap& session_map,
                       SegmentOutcome& outcome);
+  /// Why `cloud` (placed by T_W_X) and `model` (at its first instance) differ too much in height
+  /// to be one object; "" when they agree or are not compared (height_check_grounded_only).
+  std::string heightRefusal(const SurfaceCloud& cloud, const Eigen::Isometry3d& T_W_X,
+                            const ObjectModel& model) const;
   /// Whether the lowest point of `cloud`, placed by T_W_X, lies within the grounded tolerance of
   /// the current session's floor.
   bool grounded(const SurfaceCloud& cloud, const Eigen::Isometry3d& T_W_X) const;
