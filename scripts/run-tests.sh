@@ -6,7 +6,8 @@ ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$ROOT/scripts/install-deps.sh"
 "$ROOT/scripts/build.sh" -DSTRATA_BUILD_TESTS=ON -DSTRATA_WERROR=ON
 cd "$ROOT/build"
-ctest --output-on-failure -j 2 --timeout 900
+# Everything but the quarter-hour runs labelled long (`ctest -L long` runs them; README "Tests").
+ctest --output-on-failure -j 2 --timeout 900 -LE long
 # The path of a discrete GPU (device-local memory never mapped, every copy staged), tested here on
 # lavapipe on every change.
 STRATA_DEVICE_MEMORY=staged ctest --output-on-failure -j 2 --timeout 900 -L device

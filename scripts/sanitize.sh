@@ -7,6 +7,10 @@
 # (e.g. -R Mesh).
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+# ccache (the build's compiler launcher when installed) with paths relative to the clone and the
+# working directory out of the hash of debug builds: a clean clone at another path hits the cache
+# an earlier clone filled.
+export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$ROOT}" CCACHE_NOHASHDIR="${CCACHE_NOHASHDIR:-true}"
 BUILD="${STRATA_SANITIZE_BUILD_DIR:-$ROOT/build-san}"
 CC=clang CXX=clang++ cmake -S "$ROOT" -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DSTRATA_BUILD_FUZZ=ON -DSTRATA_BUILD_BENCH=OFF -DSTRATA_WITH_OPEN3D=OFF -DSTRATA_BUILD_TESTS=ON

@@ -51,6 +51,7 @@ void expectSameDatabase(const ObjectDatabase& a, const ObjectDatabase& b) {
       EXPECT_EQ(x.instances[i].match_score, y.instances[i].match_score);
       EXPECT_EQ(x.instances[i].observed_area_m2, y.instances[i].observed_area_m2);
       EXPECT_EQ(x.instances[i].merged, y.instances[i].merged);
+      EXPECT_EQ(x.instances[i].pose_constrained, y.instances[i].pose_constrained);
     }
     expectSameTsdf(x.tsdf, y.tsdf);
     // Derived parts are rebuilt on load from the same voxels.
@@ -86,6 +87,37 @@ TEST(ObjectDatabaseFile, RoundTripKeepsModelsInstancesAndVoxels) {
   fs::remove_all(dir);
 }
 
+// Version 2 added the open-pose flag of an instance; a version 1 file (flags 0 or 1) reads with
+// every pose constrained, and a version 1 file with the new flag is corrupt.
+TEST(ObjectDatabaseFile, OpenPoseFlagRoundTripsAndVersionOneFilesAreRead) {
+  const ObjectDatabase& database = test::threeSessions().database;
+  ASSERT_FALSE(database.models().empty());
+  std::vector<ObjectModel> models = database.models();
+  ASSERT_FALSE(models.front().instances.empty());
+  models.front().instances.front().pose_constrained = false;
+  models.front().instances.front().merged = false;
+  const ObjectDatabase open =
+      ObjectDatabase::fromParts(database.config(), models, database.sessions());
+  const std::string open_bytes = serializeObjectDatabase(open);
+  const ObjectDatabase loaded = deserializeObjectDatabase(open_bytes, "open");
+  EXPECT_FALSE(loaded.models().front().instances.front().pose_constrained);
+  expectSameDatabase(open, loaded);
+
+  auto asVersion1 = [](std::string bytes) {
+    bytes[9] = 1;  // u32 version after the 9-byte magic; the checksum covers the payload only
+    return bytes;
+  };
+  const ObjectDatabase v1 =
+      deserializeObjectDatabase(asVersion1(serializeObjectDatabase(database)), "v1");
+  expectSameDatabase(database, v1);
+  for (const ObjectModel& m : v1.models()) {
+    for (const ObjectInstance& i : m.instances) EXPECT_TRUE(i.pose_constrained);
+  }
+  const std::string message =
+      inputErrorOf([&] { deserializeObjectDatabase(asVersion1(open_bytes), "v1-open"); });
+  EXPECT_NE(message.find("unknown flags"), std::string::npos) << message;
+}
+
 TEST(ObjectDatabaseFile, BadFilesAreRefusedNamingTheFile) {
   const ObjectDatabase& database = test::threeSessions().database;
   const fs::path dir = test::freshTempDir("objects_file_bad");
@@ -116,7 +148,7 @@ TEST(ObjectDatabaseFile, BadFilesAreRefusedNamingTheFile) {
   writeBytes(newer, version3);
   message = inputErrorOf(load(newer));
   EXPECT_NE(message.find(newer.string()), std::string::npos) << message;
-  EXPECT_NE(message.find("written by format version 3; this build reads up to 1"),
+  EXPECT_NE(message.find("written by format version 3; this build reads up to 2"),
             std::string::npos)
       << message;
 
@@ -170,10 +202,10 @@ TEST(ObjectDatabaseFile, StoreCopyRoundTrips) {
   // A copy written by a newer build is refused naming the map and both versions.
   const std::optional<store::ObjectDatabaseBlob> blob = store.objectDatabase();
   ASSERT_TRUE(blob.has_value());
-  store.setObjectDatabase({2, blob->bytes});
+  store.setObjectDatabase({3, blob->bytes});
   const std::string message = inputErrorOf([&] { loadObjectDatabase(store, loaded); });
   EXPECT_NE(message.find(path.string()), std::string::npos) << message;
-  EXPECT_NE(message.find("format version 2; this build reads up to 1"), std::string::npos)
+  EXPECT_NE(message.find("format version 3; this build reads up to 2"), std::string::npos)
       << message;
   fs::remove_all(dir);
 }

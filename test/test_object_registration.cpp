@@ -225,6 +225,68 @@ TEST(ObjectRegistration, ADifferentShapeFitsBadly) {
   }
 }
 
+// One face of a tall box seen alone (level view: no top) leaves the translation along the face
+// open; a view of the corner (two sides and the top) holds it. The measure is the fit's, so it
+// is about the overlap: the face onto the full model is open too.
+TEST(ObjectRegistration, HorizontalConstraintIsOpenForOneFaceAndFirmForACorner) {
+  const sim::ShapeSpec stack = shape(sim::ShapeKind::kBox, Eigen::Vector3d(1.2, 0.8, 1.4));
+  const auto model = view(stack, sim::floorPose(Eigen::Vector2d(0.0, 0.0), 0.0), 40.0, 35.0, 1);
+  const auto corner = view(stack, sim::floorPose(Eigen::Vector2d(2.0, 1.0), 30.0), 80.0, 35.0, 2);
+  const auto face = view(stack, sim::floorPose(Eigen::Vector2d(2.0, 1.0), 30.0), 30.0, 0.0, 3);
+  const RegistrationResult firm = registerSurfaces(corner.first, model.first, config());
+  ASSERT_TRUE(firm.converged) << firm.reason;
+  const RegistrationResult open = registerSurfaces(face.first, model.first, config());
+  std::printf("horizontal constraint: corner %.3f (fitness %.3f), face alone %.3f (fitness %.3f)\n",
+              firm.horizontal_constraint, firm.fitness, open.horizontal_constraint, open.fitness);
+  EXPECT_GT(firm.horizontal_constraint, 0.1);
+  EXPECT_LE(firm.horizontal_constraint, 0.5);
+  ASSERT_TRUE(open.converged) << open.reason;
+  EXPECT_LT(open.horizontal_constraint, 0.02);
+  EXPECT_GE(open.horizontal_constraint, 0.0);
+}
+
+// A tall box seen level (no top: every face vertical) with the lower part of the second view
+// hidden: only the floor says how high it stands. Given the vertical translation, the pose
+// comes back with exactly that z and the rest within 1 cm / 2 deg.
+TEST(ObjectRegistration, AKnownVerticalTranslationHoldsTallFacesWithoutATop) {
+  const sim::ShapeSpec stack = shape(sim::ShapeKind::kBox, Eigen::Vector3d(1.2, 0.8, 1.4));
+  const Eigen::Isometry3d T_W_P1 = sim::floorPose(Eigen::Vector2d(0.0, 0.0), 0.0);
+  const Eigen::Isometry3d T_W_P2 = sim::floorPose(Eigen::Vector2d(2.0, 1.0), 30.0);
+  const auto [target, T_W_Ot] = view(stack, T_W_P1, 50.0, 0.0, 1);
+  const auto [seen, T_W_Oseen] = view(stack, T_W_P2, 80.0, 0.0, 2);
+  SurfaceCloud source;  // the part above 0.5 m (a crate in front hides the rest), re-centred
+  Eigen::Vector3f centroid = Eigen::Vector3f::Zero();
+  for (std::size_t i = 0; i < seen.size(); ++i) {
+    if (seen.points[i].z() + T_W_Oseen.translation().z() < 0.5) continue;
+    source.points.push_back(seen.points[i]);
+    source.normals.push_back(seen.normals[i]);
+    centroid += seen.points[i];
+  }
+  centroid /= static_cast<float>(source.size());
+  for (Eigen::Vector3f& p : source.points) p -= centroid;
+  const Eigen::Isometry3d T_W_Os = T_W_Oseen * Eigen::Translation3d(centroid.cast<double>());
+  const Eigen::Isometry3d truth = T_W_Ot.inverse() * T_W_P1 * T_W_P2.inverse() * T_W_Os;
+  ASSERT_GT(std::abs(truth.translation().z()), 0.1) << "the views' centroids differ in height";
+  const RegistrationResult free_z = registerSurfaces(source, target, config());
+  const RegistrationResult held =
+      registerSurfaces(source, target, config(), truth.translation().z());
+  ASSERT_TRUE(held.converged) << held.reason;
+  std::printf(
+      "vertical error: estimated %.3f m, held %.3f m\n",
+      free_z.converged ? free_z.T_target_source.translation().z() - truth.translation().z() : 0.0,
+      held.T_target_source.translation().z() - truth.translation().z());
+  EXPECT_NEAR(held.T_target_source.translation().z(), truth.translation().z(), 1e-5);
+  Errors e = errorsOf(held.T_target_source, truth);
+  const Errors turned =
+      errorsOf(held.T_target_source, T_W_Ot.inverse() * T_W_P1 *
+                                         sim::floorPose(Eigen::Vector2d::Zero(), 180.0) *
+                                         T_W_P2.inverse() * T_W_Os);
+  if (turned.translation_m < e.translation_m) e = turned;  // the box is the same turned half way
+  EXPECT_LT(e.translation_m, 0.01);
+  EXPECT_LT(e.rotation_deg, 2.0);
+  EXPECT_THROW(registerSurfaces(source, target, config(), std::nan("")), InputError);
+}
+
 TEST(ObjectRegistration, IsDeterministicForASeed) {
   const auto target = view(kChair, sim::floorPose(Eigen::Vector2d(0.0, 0.0), 0.0), 30.0, 35.0, 1);
   const auto source =

@@ -125,14 +125,16 @@ TEST(ObjectsDemo, DefaultRoomMeetsItsTargets) {
   }
   EXPECT_GE(e.pairs.same_object, 10u) << "objects of the room move more than once";
   EXPECT_GE(e.pairs.precision(), 0.99);
-  // Target: recall >= 0.9. Measured with 4-DoF registration, the height check and the score's
-  // fitness taken both ways: 62 % over all pairs of segments of one object (80 of 129; 51-53 %
-  // before), 91.6 % between each object's main segments (77-80 % before). The gap is over-
-  // segmented chair parts founding models of their own (the size prefilter and the height check
-  // keep them from the chair's model) and partial views refused by the SDF agreement or the
-  // free-space test. Asserted is what holds, a little below the measured figures.
-  EXPECT_GE(e.pairs.recall(), 0.58);
-  EXPECT_GE(e.pairs.mainRecall(), 0.88);
+  // Target: recall >= 0.9. Measured with 4-DoF registration, the height check, the score's
+  // fitness taken both ways, joining and the floor fixing the height: 60.5 % over all pairs of
+  // segments of one object, 89.2 % between each object's main segments (63.6 / 91.6 % with the
+  // height estimated: two chair views then passed the SDF agreement at 0.75 that now score
+  // 0.74-0.75; the warehouse and the office gained). The gap is over-segmented chair parts
+  // founding models of their own (the size prefilter and the height check keep them from the
+  // chair's model) and partial views refused by the SDF agreement or the free-space test.
+  // Asserted is what holds, a little below the measured figures.
+  EXPECT_GE(e.pairs.recall(), 0.56);
+  EXPECT_GE(e.pairs.mainRecall(), 0.86);
   EXPECT_GT(e.pose.pairs, 0u);
   EXPECT_LE(e.pose.median_translation_m, 0.01);
   EXPECT_LE(e.pose.median_rotation_deg, 2.0);

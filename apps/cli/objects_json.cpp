@@ -43,7 +43,8 @@ void writeModel(std::ostream& out, const objects::ObjectModel& m, const std::str
         << ", \"T_W_O\": " << matrix4(inst.T_W_M)
         << ", \"match_score\": " << jsonNumber(inst.match_score)
         << ", \"observed_area_m2\": " << jsonNumber(inst.observed_area_m2)
-        << ", \"merged\": " << (inst.merged ? "true" : "false") << "}";
+        << ", \"merged\": " << (inst.merged ? "true" : "false")
+        << ", \"pose_constrained\": " << (inst.pose_constrained ? "true" : "false") << "}";
   }
   out << "]}";
 }
@@ -60,6 +61,7 @@ void writeOutcome(std::ostream& out, const objects::SegmentOutcome& o, const std
       << ", \"registrations\": " << o.registrations << ", \"score\": " << jsonNumber(o.score)
       << ", \"fitness\": " << jsonNumber(o.registration.fitness)
       << ", \"rmse_m\": " << jsonNumber(o.registration.rmse_m)
+      << ", \"horizontal_constraint\": " << jsonNumber(o.registration.horizontal_constraint)
       << ", \"agreement\": " << jsonNumber(o.consistency.agreement)
       << ", \"overlap\": " << jsonNumber(o.consistency.overlap)
       << ", \"free_space_violation\": " << jsonNumber(o.consistency.free_space_violation)

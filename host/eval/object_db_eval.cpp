@@ -169,7 +169,7 @@ ObjectDbEvaluation evaluateObjectDatabase(
     e.accuracy_instances += static_cast<std::size_t>(m.accuracy_instances);
     if (m.growth > e.growth_max) e.growth_max = m.growth, e.growth_max_model = m.model_id;
   }
-  e.pose = detail::poseErrors(models, objects_of, truth, e.models);
+  e.pose = detail::poseErrors(models, objects_of, truth, e.models, e.pose_constrained);
   e.completeness_mean = e.completeness_models ? completeness_sum / e.completeness_models : 0.0;
   e.accuracy_mean_m = e.accuracy_instances ? accuracy_sum / e.accuracy_instances : 0.0;
   return e;

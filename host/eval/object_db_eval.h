@@ -147,6 +147,9 @@ struct ObjectDbEvaluation {
   std::size_t segments_in_models = 0;               // instances of some model
   PairCounts pairs;
   PoseErrors pose;
+  /// The same over the pairs whose two instances both have a constrained pose
+  /// (ObjectInstance::pose_constrained): what a user who trusts only those flags gets.
+  PoseErrors pose_constrained;
   std::vector<ModelEvaluation> models;  // by model id
   std::size_t completeness_models = 0;  // models seen in >= min_sessions
   double completeness_mean = 0.0;

@@ -27,12 +27,24 @@ void writeModel(std::ostream& out, const ModelEvaluation& m) {
       << ", \"pose_max_rotation_deg\": " << jsonNumber(m.pose_max_rotation_deg) << "}";
 }
 
+std::string poseJson(const PoseErrors& pose) {
+  std::ostringstream out;
+  out << "{\"pairs\": " << pose.pairs
+      << ", \"median_translation_m\": " << jsonNumber(pose.median_translation_m)
+      << ", \"p95_translation_m\": " << jsonNumber(pose.p95_translation_m)
+      << ", \"max_translation_m\": " << jsonNumber(pose.max_translation_m)
+      << ", \"median_rotation_deg\": " << jsonNumber(pose.median_rotation_deg)
+      << ", \"p95_rotation_deg\": " << jsonNumber(pose.p95_rotation_deg)
+      << ", \"max_rotation_deg\": " << jsonNumber(pose.max_rotation_deg) << "}";
+  return out.str();
+}
+
 }  // namespace
 
 std::string objectDbEvaluationJson(const ObjectDbEvaluation& e, int indent) {
   const std::string pad(static_cast<std::size_t>(indent) + 2, ' ');
   const PairCounts& p = e.pairs;
-  const PoseErrors& pose = e.pose;
+  const PoseErrors& pose = e.pose;  // all pairs; pose_constrained: both poses constrained
   std::ostringstream out;
   out << "{\n"
       << pad << "\"segments\": " << e.segments
@@ -48,13 +60,8 @@ std::string objectDbEvaluationJson(const ObjectDbEvaluation& e, int indent) {
       << ", \"same_shape_other_object\": " << p.same_shape_other_object
       << ", \"same_shape_other_object_predicted\": " << p.same_shape_other_object_predicted
       << "},\n"
-      << pad << "\"pose\": {\"pairs\": " << pose.pairs
-      << ", \"median_translation_m\": " << jsonNumber(pose.median_translation_m)
-      << ", \"p95_translation_m\": " << jsonNumber(pose.p95_translation_m)
-      << ", \"max_translation_m\": " << jsonNumber(pose.max_translation_m)
-      << ", \"median_rotation_deg\": " << jsonNumber(pose.median_rotation_deg)
-      << ", \"p95_rotation_deg\": " << jsonNumber(pose.p95_rotation_deg)
-      << ", \"max_rotation_deg\": " << jsonNumber(pose.max_rotation_deg) << "},\n"
+      << pad << "\"pose\": " << poseJson(pose) << ",\n"
+      << pad << "\"pose_constrained\": " << poseJson(e.pose_constrained) << ",\n"
       << pad << "\"completeness_mean\": " << jsonNumber(e.completeness_mean)
       << ", \"completeness_models\": " << e.completeness_models
       << ", \"accuracy_mean_m\": " << jsonNumber(e.accuracy_mean_m)
@@ -78,18 +85,21 @@ std::string objectDbEvaluationJson(const ObjectDbEvaluation& e, int indent) {
 
 std::string describeObjectDbEvaluation(const ObjectDbEvaluation& e) {
   const PairCounts& p = e.pairs;
-  char text[640];
+  char text[800];
   std::snprintf(text, sizeof(text),
                 "pairs: precision %s, recall %s (main segments %s); pose (%zu pairs): median %.1f "
                 "mm / %.2f deg, "
-                "95th %.1f mm / %.2f deg; completeness %.2f (%zu models in 3+ sessions); "
+                "95th %.1f mm / %.2f deg (constrained poses, %zu pairs: 95th %.1f mm / %.2f "
+                "deg); completeness %.2f (%zu models in 3+ sessions); "
                 "accuracy %.1f mm; growth at most %.2f",
                 percent(p.predicted_same_correct, p.predicted_same).c_str(),
                 percent(p.same_object_predicted, p.same_object).c_str(),
                 percent(p.same_object_main_predicted, p.same_object_main).c_str(), e.pose.pairs,
                 1000.0 * e.pose.median_translation_m, e.pose.median_rotation_deg,
-                1000.0 * e.pose.p95_translation_m, e.pose.p95_rotation_deg, e.completeness_mean,
-                e.completeness_models, 1000.0 * e.accuracy_mean_m, e.growth_max);
+                1000.0 * e.pose.p95_translation_m, e.pose.p95_rotation_deg,
+                e.pose_constrained.pairs, 1000.0 * e.pose_constrained.p95_translation_m,
+                e.pose_constrained.p95_rotation_deg, e.completeness_mean, e.completeness_models,
+                1000.0 * e.accuracy_mean_m, e.growth_max);
   return text;
 }
 

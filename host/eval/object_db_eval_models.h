@@ -20,10 +20,11 @@ ModelEvaluation evaluateModel(const objects::ObjectModel& model, const SegmentOb
                               const ObjectDbTruth& truth, const ObjectDbEvalConfig& config);
 
 /// Pose errors over every model's instance pairs on one true object; fills the per-model pose
-/// figures of `per_model` (one per model, same order).
+/// figures of `per_model` (one per model, same order) and, in `constrained`, the errors over the
+/// pairs of two constrained poses only.
 PoseErrors poseErrors(const std::vector<objects::ObjectModel>& models,
                       const SegmentObjects& objects_of, const ObjectDbTruth& truth,
-                      std::vector<ModelEvaluation>& per_model);
+                      std::vector<ModelEvaluation>& per_model, PoseErrors& constrained);
 
 /// Area of the mesh's triangles, leaving out those lying on the floor (every vertex at z <=
 /// floor_z_m) when `skip_floor` is set.

@@ -24,7 +24,26 @@ double quantile(std::vector<double>& values, double q) {
 struct PairError {
   double translation_m = 0.0;
   double rotation_deg = 0.0;
+  bool constrained = true;  // both instances' poses
 };
+
+/// Median, 95th percentile and maximum of `errors`.
+PoseErrors summarise(const std::vector<PairError>& errors) {
+  std::vector<double> translation, rotation;
+  for (const PairError& pair : errors) {
+    translation.push_back(pair.translation_m);
+    rotation.push_back(pair.rotation_deg);
+  }
+  PoseErrors e;
+  e.pairs = translation.size();
+  e.median_translation_m = quantile(translation, 0.5);
+  e.p95_translation_m = quantile(translation, 0.95);
+  e.max_translation_m = translation.empty() ? 0.0 : translation.back();
+  e.median_rotation_deg = quantile(rotation, 0.5);
+  e.p95_rotation_deg = quantile(rotation, 0.95);
+  e.max_rotation_deg = rotation.empty() ? 0.0 : rotation.back();
+  return e;
+}
 
 /// The errors of the model's instance pairs that lie on one true object.
 std::vector<PairError> modelPoseErrors(const objects::ObjectModel& model,
@@ -53,7 +72,8 @@ std::vector<PairError> modelPoseErrors(const objects::ObjectModel& model,
       // In a's object frame the error should be a symmetry of the shape (identity at best).
       const Eigen::Matrix3d R_error = (T_W_Oa.inverse() * estimated * T_W_Ob).linear();
       errors.push_back({(estimated * centre_W - actual * centre_W).norm(),
-                        symmetricRotationErrorDeg(R_error, yawSymmetryOrder(truth.shapes[k]))});
+                        symmetricRotationErrorDeg(R_error, yawSymmetryOrder(truth.shapes[k])),
+                        a.pose_constrained && b.pose_constrained});
     }
   }
   return errors;
@@ -65,27 +85,20 @@ namespace detail {
 
 PoseErrors poseErrors(const std::vector<objects::ObjectModel>& models,
                       const SegmentObjects& objects_of, const ObjectDbTruth& truth,
-                      std::vector<ModelEvaluation>& per_model) {
-  std::vector<double> translation, rotation;
+                      std::vector<ModelEvaluation>& per_model, PoseErrors& constrained) {
+  std::vector<PairError> all, both_constrained;
   for (std::size_t m = 0; m < models.size(); ++m) {
     for (const PairError& pair : modelPoseErrors(models[m], objects_of, truth)) {
-      translation.push_back(pair.translation_m);
-      rotation.push_back(pair.rotation_deg);
+      all.push_back(pair);
+      if (pair.constrained) both_constrained.push_back(pair);
       ModelEvaluation& r = per_model[m];
       ++r.pose_pairs;
       r.pose_max_translation_m = std::max(r.pose_max_translation_m, pair.translation_m);
       r.pose_max_rotation_deg = std::max(r.pose_max_rotation_deg, pair.rotation_deg);
     }
   }
-  PoseErrors e;
-  e.pairs = translation.size();
-  e.median_translation_m = quantile(translation, 0.5);
-  e.p95_translation_m = quantile(translation, 0.95);
-  e.max_translation_m = translation.empty() ? 0.0 : translation.back();
-  e.median_rotation_deg = quantile(rotation, 0.5);
-  e.p95_rotation_deg = quantile(rotation, 0.95);
-  e.max_rotation_deg = rotation.empty() ? 0.0 : rotation.back();
-  return e;
+  constrained = summarise(both_constrained);
+  return summarise(all);
 }
 
 }  // namespace detail

@@ -132,6 +132,10 @@ void DatabaseConfig::validate() const {
     throw InputError("DatabaseConfig.max_height_difference_voxels must be >= 0, got " +
                      std::to_string(max_height_difference_voxels));
   }
+  if (!(min_horizontal_constraint >= 0.0f && min_horizontal_constraint <= 0.5f)) {
+    throw InputError("DatabaseConfig.min_horizontal_constraint must be in [0, 0.5], got " +
+                     std::to_string(min_horizontal_constraint));
+  }
   if (!(min_match_score >= 0.0f && min_match_score <= 1.0f)) {
     throw InputError("DatabaseConfig.min_match_score must be in [0, 1], got " +
                      std::to_string(min_match_score));
@@ -206,20 +210,23 @@ SegmentOutcome ObjectDatabase::addSegment(int session, const TsdfMap& session_ma
     ObjectModel& model = *std::find_if(models_.begin(), models_.end(),
                                        [&](const ObjectModel& m) { return m.id == best.model_id; });
     const Eigen::Isometry3d T_M_O = best.registration.T_target_source;
-    if (config_.merge) {
+    const bool constrained =
+        best.registration.horizontal_constraint >= config_.min_horizontal_constraint;
+    if (config_.merge && constrained) {
       mergeObservation(model, observation, T_M_O, config_.model);
       ++model.merged_observations;
       refreshModel(model, spacing_m, config_.model);
     }
     instance.T_W_M = observation.T_W_O * T_M_O.inverse();
     instance.match_score = best.score;
-    instance.merged = config_.merge;
+    instance.merged = config_.merge && constrained;
+    instance.pose_constrained = constrained;
     model.instances.push_back(instance);
     outcome.model_id = model.id;
     outcome.score = best.score;
     outcome.registration = best.registration;
     outcome.consistency = best.consistency;
-    if (config_.join_duplicates && !also_accepted.empty()) {
+    if (config_.join_duplicates && constrained && !also_accepted.empty()) {
       joinDuplicates(best.model_id, best, also_accepted, observation, session_map, outcome);
     }
   } else {
@@ -251,7 +258,8 @@ ObjectDatabase::Match ObjectDatabase::bestMatch(const ObjectObservation& observa
       continue;
     }
     const RegistrationResult registration =
-        registerSurfaces(observation.surface_O, model->surface_M, config_.registration);
+        registerSurfaces(observation.surface_O, model->surface_M, config_.registration,
+                         floorHeightShift(observation, *model));
     if (!registration.converged) {
       appendRefusal(outcome.refused, id, "registration: " + registration.reason);
       continue;
@@ -302,6 +310,11 @@ void ObjectDatabase::joinDuplicates(int keep_id, const Match& best,
   };
   const Eigen::Isometry3d T_K_O = best.registration.T_target_source;
   for (const Match& other : others) {
+    if (other.registration.horizontal_constraint < config_.min_horizontal_constraint) {
+      appendRefusal(outcome.refused, other.model_id,
+                    "not joined: its registration leaves the horizontal translation open");
+      continue;
+    }
     const auto dup = byId(other.model_id);
     if (dup == models_.end()) continue;
     ObjectModel& keep = *byId(keep_id);
@@ -360,6 +373,18 @@ std::string ObjectDatabase::heightRefusal(const SurfaceCloud& cloud, const Eigen
   }
   const float voxel_m = config_.registration.voxel_size_m;
   return heightMismatch(spanOf(cloud, voxel_m), spanOf(model.surface_M, voxel_m), config_);
+}
+
+std::optional<double> ObjectDatabase::floorHeightShift(const ObjectObservation& observation,
+                                                       const ObjectModel& model) const {
+  if (!config_.floor_fixes_height || model.instances.empty()) return std::nullopt;
+  const Eigen::Isometry3d& T_W_M = model.instances.front().T_W_M;
+  if (!grounded(observation.surface_O, observation.T_W_O) || !grounded(model.surface_M, T_W_M)) {
+    return std::nullopt;
+  }
+  // Both stand on the floor, so M's origin is as high in this session as at its first instance:
+  // T_W_M.z = T_W_O.z - t_z (rotations about the vertical; O's axes are the world's).
+  return observation.T_W_O.translation().z() - T_W_M.translation().z();
 }
 
 bool ObjectDatabase::grounded(const SurfaceCloud& cloud, const Eigen::Isometry3d& T_W_X) const {

@@ -11,6 +11,7 @@
 //   are skipped with the reason recorded. Several segments of one session may join one model
 //   (identical shapes: the database stores shapes and their instances).
 // Thread safety: not thread safe; one ObjectDatabase per thread.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -64,6 +65,11 @@ struct DatabaseConfig {
   /// (docs/objects_evaluation.md).
   bool height_check_grounded_only = true;
   float grounded_tolerance_voxels = 4.0f;
+  /// When the observation and the model both reach the floor (as above), the registration's
+  /// vertical translation is not estimated but taken from the floor: M's origin stands as high
+  /// over the floor in every session. Without it a tall box whose top the camera did not see
+  /// fitted itself slid up or down by up to 0.7 m (warehouse). false: estimated.
+  bool floor_fixes_height = true;
   /// A span whose top face was not seen (none of the samples near its highest point face up:
   /// the camera at 1.2 m does not see the top of a 1.4 m stack, a crate in front hides a part)
   /// is a lower bound: it may be lower than the other span by any amount, not higher beyond the
@@ -71,6 +77,12 @@ struct DatabaseConfig {
   /// recall rose 38.1 -> 44.3 % but its precision fell 100 -> 94.7 % (crates of 0.5 and 0.6 m
   /// joined through partial views), so it stays off.
   bool open_top_is_lower_bound = false;
+  /// A match whose overlap holds the horizontal translation less firmly than this
+  /// (RegistrationResult::horizontal_constraint: one face of a box, or a cart's top, seen alone)
+  /// keeps its identity but not its pose: the instance is recorded with pose_constrained =
+  /// false, the observation is not merged (a face slid along itself would blur the model) and
+  /// joins no models (their relative pose would be slid too). 0 disables.
+  float min_horizontal_constraint = 0.02f;
   /// Merge an accepted observation into the model (false: only record the instance).
   bool merge = true;
   /// An observation that two or more models accept shows them to be one object seen in parts:
@@ -153,6 +165,10 @@ class ObjectDatabase {
   /// Whether the lowest point of `cloud`, placed by T_W_X, lies within the grounded tolerance of
   /// the current session's floor.
   bool grounded(const SurfaceCloud& cloud, const Eigen::Isometry3d& T_W_X) const;
+  /// T_M_O's z translation when the observation and the model both reach the floor
+  /// (floor_fixes_height), else nullopt: the registration estimates it.
+  std::optional<double> floorHeightShift(const ObjectObservation& observation,
+                                         const ObjectModel& model) const;
 
   DatabaseConfig config_;
   std::vector<ObjectModel> models_;

@@ -21,6 +21,9 @@ constexpr std::size_t kHeaderBytes = sizeof(kMagic) + 4 + 4 + 8;
 /// left before anything is allocated.
 constexpr std::size_t kInstanceBytes = 4 + 4 + 12 * 8 + 8 + 4 + 1;
 constexpr std::size_t kModelBytes = 4 + 4 + 4 + 4;
+/// An instance's flags byte.
+constexpr unsigned kMergedBit = 1;    // versions 1 and 2
+constexpr unsigned kPoseOpenBit = 2;  // version 2: pose_constrained is false
 
 /// FNV-1a, 64 bit (Fowler, Noll, Vo).
 std::uint64_t fnv1a64(const std::uint8_t* data, std::size_t size) {
@@ -97,10 +100,11 @@ void putInstance(Writer& w, const ObjectInstance& instance) {
   }
   w.put(instance.match_score);
   w.put(instance.observed_area_m2);
-  w.put(static_cast<std::uint8_t>(instance.merged ? 1 : 0));
+  w.put(static_cast<std::uint8_t>((instance.merged ? kMergedBit : 0) |
+                                  (instance.pose_constrained ? 0 : kPoseOpenBit)));
 }
 
-ObjectInstance getInstance(Reader& r) {
+ObjectInstance getInstance(Reader& r, std::uint32_t version) {
   ObjectInstance instance;
   instance.session = r.get<std::int32_t>("instance session");
   instance.segment_id = r.get<std::int32_t>("instance segment");
@@ -115,7 +119,15 @@ ObjectInstance getInstance(Reader& r) {
   }
   instance.match_score = r.get<double>("match score");
   instance.observed_area_m2 = r.get<float>("observed area");
-  instance.merged = r.get<std::uint8_t>("merged flag") != 0;
+  // Version 1 wrote 0 or 1 (merged); version 2 added the open-pose bit.
+  const auto flags = r.get<std::uint8_t>("instance flags");
+  const unsigned known = version >= 2 ? (kMergedBit | kPoseOpenBit) : kMergedBit;
+  if ((flags & ~known) != 0) {
+    r.fail("an instance of session " + std::to_string(instance.session) + " has unknown flags " +
+           std::to_string(flags));
+  }
+  instance.merged = (flags & kMergedBit) != 0;
+  instance.pose_constrained = (flags & kPoseOpenBit) == 0;
   return instance;
 }
 
@@ -129,12 +141,12 @@ void putModel(Writer& w, const ObjectModel& model) {
   w.putBytes(tsdf);
 }
 
-ObjectModel getModel(Reader& r, const std::string& name) {
+ObjectModel getModel(Reader& r, std::uint32_t version, const std::string& name) {
   ObjectModel model;
   model.id = r.get<std::int32_t>("model id");
   model.merged_observations = r.get<std::int32_t>("merged observations");
   const std::uint32_t instances = r.getCount(kInstanceBytes, "instance count");
-  for (std::uint32_t i = 0; i < instances; ++i) model.instances.push_back(getInstance(r));
+  for (std::uint32_t i = 0; i < instances; ++i) model.instances.push_back(getInstance(r, version));
   const auto tsdf_bytes = r.get<std::uint32_t>("TSDF size");
   model.tsdf =
       deserializeMap(r.getBytes(tsdf_bytes, "TSDF"), name + " model " + std::to_string(model.id));
@@ -145,8 +157,9 @@ std::string headerError(const std::string& name, const std::string& what) {
   return "object database '" + name + "' " + what;
 }
 
-/// The payload after checking the header: magic, version, length, checksum.
-Reader checkedPayload(const std::string& bytes, const std::string& name) {
+/// The payload after checking the header: magic, version (returned in `version`), length,
+/// checksum.
+Reader checkedPayload(const std::string& bytes, const std::string& name, std::uint32_t& version) {
   if (bytes.size() < kHeaderBytes) {
     throw InputError(headerError(name, "is truncated: " + std::to_string(bytes.size()) +
                                            " bytes, shorter than its " +
@@ -157,7 +170,7 @@ Reader checkedPayload(const std::string& bytes, const std::string& name) {
   }
   const auto* data = reinterpret_cast<const std::uint8_t*>(bytes.data());
   Reader header(data + sizeof(kMagic), kHeaderBytes - sizeof(kMagic), name);
-  const auto version = header.get<std::uint32_t>("version");
+  version = header.get<std::uint32_t>("version");
   const auto payload_bytes = header.get<std::uint32_t>("payload size");
   const auto checksum = header.get<std::uint64_t>("checksum");
   if (version == 0 || version > kObjectDatabaseFormatVersion) {
@@ -198,7 +211,7 @@ std::string serializeObjectDatabase(const ObjectDatabase& database) {
   for (const ObjectModel& model : database.models()) putModel(payload, model);
   if (payload.bytes.size() > std::numeric_limits<std::uint32_t>::max()) {
     throw Error("object database of " + std::to_string(payload.bytes.size()) +
-                " bytes exceeds the 4 GiB that format version 1 holds");
+                " bytes exceeds the 4 GiB that the format holds");
   }
   Writer file;
   file.bytes.assign(kMagic, kMagic + sizeof(kMagic));
@@ -211,7 +224,8 @@ std::string serializeObjectDatabase(const ObjectDatabase& database) {
 
 ObjectDatabase deserializeObjectDatabase(const std::string& bytes, const std::string& name,
                                          const DatabaseConfig& config) {
-  Reader r = checkedPayload(bytes, name);
+  std::uint32_t version = 0;
+  Reader r = checkedPayload(bytes, name, version);
   DatabaseConfig loaded = config;
   loaded.registration.voxel_size_m = r.get<float>("map voxel size");
   loaded.model.voxel_size_m = r.get<float>("model voxel size");
@@ -230,7 +244,7 @@ ObjectDatabase deserializeObjectDatabase(const std::string& bytes, const std::st
   const float spacing_m =
       loaded.observation.sample_spacing_voxels * loaded.registration.voxel_size_m;
   for (ObjectModel& model : models) {
-    model = getModel(r, name);
+    model = getModel(r, version, name);
     if (model.id <= 0 || !ids.insert(model.id).second) {
       r.fail("model id " + std::to_string(model.id) + " is not positive or repeats");
     }

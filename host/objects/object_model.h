@@ -2,9 +2,9 @@
 // An object model of the database: one shape as a TSDF in its own model frame M, the observations
 // merged into it, and its instances (where it stood in which session). docs/objects.md.
 //
-// Merging (mergeObservation) is the weighted SDF average of voxblox/Furrer et al.: each voxel of the
-// model grid takes the observation's trilinearly interpolated distance at T_M_O^-1 * p (only where
-// all 8 voxels around that point are observed) and
+// Merging (mergeObservation) is the weighted SDF average of voxblox/Furrer et al.: each voxel of
+// the model grid takes the observation's trilinearly interpolated distance at T_M_O^-1 * p (only
+// where all 8 voxels around that point are observed) and
 //   d = (W_M d_M + W_O d_O) / (W_M + W_O),  W = min(W_M + W_O, max_weight),
 // colour weighted the same way. New model blocks are allocated where the observation has
 // surface the model lacks. The model's voxel size may be finer than the map's
@@ -27,9 +27,13 @@ struct ObjectInstance {
   int session = 0;
   int segment_id = 0;
   Eigen::Isometry3d T_W_M = Eigen::Isometry3d::Identity();  // model frame -> world, that session
-  double match_score = 1.0;  // registration fitness x SDF agreement; 1 for the founding one
+  double match_score = 1.0;       // registration fitness x SDF agreement; 1 for the founding one
   float observed_area_m2 = 0.0f;  // surface area of that session's segment
   bool merged = false;            // its voxels were averaged into the model
+  /// false: the match's overlap left the horizontal translation open (one face or a top seen
+  /// alone, DatabaseConfig::min_horizontal_constraint): the identity holds, T_W_M may be slid
+  /// along that face, and the observation was not merged.
+  bool pose_constrained = true;
 };
 
 struct ObjectModelConfig {
@@ -43,13 +47,13 @@ struct ObjectModelConfig {
 };
 
 struct ObjectModel {
-  int id = 0;  // 1.. in order of creation, never reused
-  TsdfMap tsdf{MapConfig{}};      // in M; truncation as the map's
+  int id = 0;                             // 1.. in order of creation, never reused
+  TsdfMap tsdf{MapConfig{}};              // in M; truncation as the map's
   std::vector<ObjectInstance> instances;  // in the order they were added
   int merged_observations = 0;
   // Derived from tsdf by refreshModel(): kept so matching does not re-mesh.
-  Mesh mesh_M;                    // marching cubes of tsdf, model frame
-  SurfaceCloud surface_M;         // thinned mesh vertices, for registration
+  Mesh mesh_M;                                         // marching cubes of tsdf, model frame
+  SurfaceCloud surface_M;                              // thinned mesh vertices, for registration
   Eigen::Vector3f extent_m = Eigen::Vector3f::Zero();  // sorted descending
   float surface_area_m2 = 0.0f;
   Eigen::Vector3f mean_color = Eigen::Vector3f::Zero();

@@ -127,13 +127,28 @@ std::vector<Correspondence> matchFeatures(const Features::Ptr& source, const Fea
 struct Fit {
   double fitness = 0.0;
   double rmse_m = 0.0;
+  double horizontal_constraint = 0.0;  // RegistrationResult's, over the inliers
 };
+
+/// The smaller eigenvalue of the mean of n_xy n_xy^T (2x2, symmetric) over the normals summed
+/// into (xx, xy, yy) from `count` normals: how strongly point-to-plane terms hold the weakest
+/// horizontal direction.
+double weakestHorizontal(double xx, double xy, double yy, std::size_t count) {
+  if (count == 0) return 0.0;
+  const double n = static_cast<double>(count);
+  const double mean = 0.5 * (xx + yy) / n;
+  const double half_gap = std::hypot(0.5 * (xx - yy), xy) / n;
+  return std::max(0.0, mean - half_gap);
+}
+
 Fit scoreFit(const Cloud& source, const pcl::KdTreeFLANN<pcl::PointNormal>& target_tree,
              const Eigen::Matrix4f& T, float inlier_m) {
   std::vector<int> nearest(1);
   std::vector<float> squared(1);
   std::size_t inliers = 0;
   double sum_squared = 0.0;
+  double xx = 0.0, xy = 0.0, yy = 0.0;  // target normals' horizontal parts at the inliers
+  const Cloud& target = *target_tree.getInputCloud();
   pcl::PointNormal moved;
   for (const pcl::PointNormal& p : source) {
     moved.getVector4fMap() = T * p.getVector4fMap();
@@ -141,12 +156,17 @@ Fit scoreFit(const Cloud& source, const pcl::KdTreeFLANN<pcl::PointNormal>& targ
         squared[0] <= inlier_m * inlier_m) {
       ++inliers;
       sum_squared += squared[0];
+      const pcl::PointNormal& q = target[static_cast<std::size_t>(nearest[0])];
+      xx += double(q.normal_x) * q.normal_x;
+      xy += double(q.normal_x) * q.normal_y;
+      yy += double(q.normal_y) * q.normal_y;
     }
   }
   Fit fit;
   if (inliers > 0) {
     fit.fitness = static_cast<double>(inliers) / static_cast<double>(source.size());
     fit.rmse_m = std::sqrt(sum_squared / static_cast<double>(inliers));
+    fit.horizontal_constraint = weakestHorizontal(xx, xy, yy, inliers);
   }
   return fit;
 }
@@ -171,7 +191,7 @@ void keepCompatibleNormals(const Cloud& moved, const Cloud& target, pcl::Corresp
 /// point-to-plane normal matrix is singular (PCL's TransformationEstimationPointToPlaneLLS then
 /// inverts it into NaN). The nearest points hold such a direction without biasing the others.
 Eigen::Matrix4f pointToPlaneStep(const Cloud& moved, const Cloud& target,
-                                 const pcl::Correspondences& pairs) {
+                                 const pcl::Correspondences& pairs, bool fixed_z) {
   constexpr double kPointWeight = 0.1;
   Eigen::Matrix<double, 6, 6> H = Eigen::Matrix<double, 6, 6>::Zero();
   Eigen::Matrix<double, 6, 1> g = Eigen::Matrix<double, 6, 1>::Zero();
@@ -194,6 +214,12 @@ Eigen::Matrix4f pointToPlaneStep(const Cloud& moved, const Cloud& target,
       addRow(J, d[axis], kPointWeight);
     }
   }
+  if (fixed_z) {  // the step leaves the vertical translation where it is
+    H.row(5).setZero();
+    H.col(5).setZero();
+    H(5, 5) = 1.0;
+    g(5) = 0.0;
+  }
   const Eigen::Matrix<double, 6, 1> x = H.ldlt().solve(g);
   Eigen::Matrix4d step = Eigen::Matrix4d::Identity();
   const double angle = x.head<3>().norm();
@@ -205,11 +231,12 @@ Eigen::Matrix4f pointToPlaneStep(const Cloud& moved, const Cloud& target,
 }
 
 /// Point-to-plane ICP: PCL's correspondence search (kd-tree), pairs within `max_distance_m` with
-/// compatible normals, Gauss-Newton steps as above until they fall below 10 um and 10 urad.
+/// compatible normals, Gauss-Newton steps as above until they fall below 10 um and 10 urad. With
+/// `fixed_z_m` the translation's z is held there.
 Eigen::Matrix4f iterateIcp(
     pcl::registration::CorrespondenceEstimation<pcl::PointNormal, pcl::PointNormal, float>& search,
     const Cloud::Ptr& source, const Cloud::Ptr& target, const Eigen::Matrix4f& guess,
-    double max_distance_m, int iterations) {
+    double max_distance_m, int iterations, std::optional<float> fixed_z_m) {
   Eigen::Matrix4f T = guess;
   Cloud::Ptr moved(new Cloud);
   pcl::Correspondences pairs;
@@ -219,9 +246,10 @@ Eigen::Matrix4f iterateIcp(
     search.determineCorrespondences(pairs, max_distance_m);
     keepCompatibleNormals(*moved, *target, pairs);
     if (pairs.size() < 6) break;  // the 6 DoF are not determined
-    const Eigen::Matrix4f step = pointToPlaneStep(*moved, *target, pairs);
+    const Eigen::Matrix4f step = pointToPlaneStep(*moved, *target, pairs, fixed_z_m.has_value());
     if (!step.allFinite()) break;
     T = step * T;
+    if (fixed_z_m) T(2, 3) = *fixed_z_m;  // a small tilt of the step moves it a little
     const float turned =
         std::acos(std::clamp((step.topLeftCorner<3, 3>().trace() - 1.0f) / 2.0f, -1.0f, 1.0f));
     if (step.topRightCorner<3, 1>().norm() < 1e-5f && turned < 1e-5f) break;
@@ -234,14 +262,16 @@ Eigen::Matrix4f iterateIcp(
 /// planes constrain where the hypothesis put them (1-2 cm off on chairs seen from 90 deg apart,
 /// within 6 mm with the coarse stage).
 Eigen::Matrix4f refineIcp(const Cloud::Ptr& source, const Cloud::Ptr& target,
-                          const Eigen::Matrix4f& guess, const RegistrationConfig& config) {
+                          const Eigen::Matrix4f& guess, const RegistrationConfig& config,
+                          std::optional<float> fixed_z_m) {
   pcl::registration::CorrespondenceEstimation<pcl::PointNormal, pcl::PointNormal, float> search;
   search.setInputTarget(target);
-  const Eigen::Matrix4f coarse =
-      iterateIcp(search, source, target, guess,
-                 config.icp_coarse_distance_voxels * config.voxel_size_m, config.icp_iterations);
+  const Eigen::Matrix4f coarse = iterateIcp(search, source, target, guess,
+                                            config.icp_coarse_distance_voxels * config.voxel_size_m,
+                                            config.icp_iterations, fixed_z_m);
   return iterateIcp(search, source, target, coarse,
-                    config.icp_max_distance_voxels * config.voxel_size_m, config.icp_iterations);
+                    config.icp_max_distance_voxels * config.voxel_size_m, config.icp_iterations,
+                    fixed_z_m);
 }
 
 /// The hypotheses scored on the whole clouds; the best few refined by ICP; of those, the best
@@ -252,19 +282,22 @@ struct Refined {
 };
 std::optional<Refined> refineBest(const Cloud::Ptr& source, const Cloud::Ptr& target,
                                   const std::vector<Hypothesis>& hypotheses,
-                                  const RegistrationConfig& config) {
+                                  const RegistrationConfig& config,
+                                  std::optional<float> fixed_z_m) {
   pcl::KdTreeFLANN<pcl::PointNormal> target_tree;
   target_tree.setInputCloud(target);
   const float inlier_m = config.inlier_distance_voxels * config.voxel_size_m;
   std::vector<std::pair<double, Eigen::Matrix4f>> scored;
   for (const Hypothesis& h : hypotheses) {
-    scored.emplace_back(scoreFit(*source, target_tree, h.T, inlier_m).fitness, h.T);
+    Eigen::Matrix4f T = h.T;
+    if (fixed_z_m) T(2, 3) = *fixed_z_m;
+    scored.emplace_back(scoreFit(*source, target_tree, T, inlier_m).fitness, T);
   }
   std::stable_sort(scored.begin(), scored.end(),
                    [](const auto& a, const auto& b) { return a.first > b.first; });
   std::optional<Refined> best;
   for (std::size_t i = 0; i < std::min(kHypothesesRefined, scored.size()); ++i) {
-    const Eigen::Matrix4f T = refineIcp(source, target, scored[i].second, config);
+    const Eigen::Matrix4f T = refineIcp(source, target, scored[i].second, config, fixed_z_m);
     if (tiltDeg(T) > config.max_tilt_deg) continue;
     const Fit fit = scoreFit(*source, target_tree, T, inlier_m);
     if (!best || fit.fitness > best->fit.fitness) best = Refined{T, fit};
@@ -307,11 +340,18 @@ void RegistrationConfig::validate() const {
 }
 
 RegistrationResult registerSurfaces(const SurfaceCloud& source, const SurfaceCloud& target,
-                                    const RegistrationConfig& config) {
+                                    const RegistrationConfig& config,
+                                    std::optional<double> vertical_translation_m) {
   const auto start = std::chrono::steady_clock::now();
   config.validate();
   requireCloud(source, "source");
   requireCloud(target, "target");
+  if (vertical_translation_m && !std::isfinite(*vertical_translation_m)) {
+    throw InputError("registerSurfaces: the vertical translation is not finite");
+  }
+  const std::optional<float> fixed_z_m =
+      vertical_translation_m ? std::optional<float>(static_cast<float>(*vertical_translation_m))
+                             : std::nullopt;
   RegistrationResult result;
   auto finish = [&](const std::string& reason) {
     result.reason = reason;
@@ -339,7 +379,8 @@ RegistrationResult registerSurfaces(const SurfaceCloud& source, const SurfaceClo
       return finish("no RANSAC hypothesis " + kind + " from " + std::to_string(matches.size()) +
                     " feature correspondences");
     }
-    const std::optional<Refined> best = refineBest(source_pcl, target_pcl, hypotheses, config);
+    const std::optional<Refined> best =
+        refineBest(source_pcl, target_pcl, hypotheses, config, fixed_z_m);
     if (!best) {
       return finish("ICP tilted every hypothesis by more than " + degrees(config.max_tilt_deg));
     }
@@ -348,6 +389,7 @@ RegistrationResult registerSurfaces(const SurfaceCloud& source, const SurfaceClo
     result.T_target_source.matrix() = best_T.cast<double>();
     result.fitness = best_fit.fitness;
     result.rmse_m = best_fit.rmse_m;
+    result.horizontal_constraint = best_fit.horizontal_constraint;
     result.target_coverage = targetCoverage(*source_pcl, *target_pcl, best_T, config);
     if (best_fit.fitness <= 0.0) return finish("no source point near the target after ICP");
     return finish("");

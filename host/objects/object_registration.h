@@ -8,6 +8,7 @@
 // Thread safety: free function, no shared state (PCL objects are local to the call).
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "objects/object_observation.h"
@@ -49,14 +50,25 @@ struct RegistrationResult {
   /// The fitness the other way round: share of target points within the inlier distance of the
   /// registered source (how much of the target the source covers).
   double target_coverage = 0.0;
+  /// How firmly the overlap holds the horizontal translation: the smaller eigenvalue of the
+  /// mean of n_xy n_xy^T over the target's normals at the inliers (0..0.5; 0.5 for normals spread
+  /// evenly around the vertical, 0 for one vertical face or a top seen alone, along which the
+  /// source may slide without changing the fit). Point-to-plane ICP's translation terms are these
+  /// normals; yaw aside, the horizontal is what a partial view of an upright object leaves open.
+  double horizontal_constraint = 0.0;
   int correspondences = 0;  // feature correspondences RANSAC started from
   double ms = 0.0;
 };
 
 /// Registers `source` onto `target` (both with normals, in their own frames). Never throws for
-/// unlucky data (converged = false with the reason); InputError for empty clouds, missing normals
-/// or a bad config.
+/// unlucky data (converged = false with the reason); InputError for empty clouds, missing normals,
+/// a bad config or a non-finite vertical translation.
+/// `vertical_translation_m`: when known, T_target_source's z translation (metres). Two views of
+/// one object standing on the floor in both frames differ by a yaw and a horizontal shift only;
+/// without the floor a view whose faces are all vertical (a tall stack whose top the camera does
+/// not see) fits itself slid up or down. RANSAC hypotheses take this z and ICP holds it.
 RegistrationResult registerSurfaces(const SurfaceCloud& source, const SurfaceCloud& target,
-                                    const RegistrationConfig& config);
+                                    const RegistrationConfig& config,
+                                    std::optional<double> vertical_translation_m = std::nullopt);
 
 }  // namespace strata::objects
