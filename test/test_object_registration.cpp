@@ -287,6 +287,40 @@ TEST(ObjectRegistration, AKnownVerticalTranslationHoldsTallFacesWithoutATop) {
   EXPECT_THROW(registerSurfaces(source, target, config(), std::nan("")), InputError);
 }
 
+// Clouds prepared once (SurfaceFeatures) register exactly as plain clouds do, reused for a
+// second registration too; features prepared for another descriptor support are refused.
+TEST(ObjectRegistration, PreparedCloudsGiveTheSameResultAsPlainOnes) {
+  const auto target = view(kChair, sim::floorPose(Eigen::Vector2d(0.0, 0.0), 0.0), 30.0, 35.0, 1);
+  const auto source =
+      view(kChair, sim::floorPose(Eigen::Vector2d(1.0, -0.5), 60.0), 150.0, 35.0, 2);
+  const RegistrationResult plain = registerSurfaces(source.first, target.first, config());
+  ASSERT_TRUE(plain.converged) << plain.reason;
+  const SurfaceFeatures source_features(source.first, config());
+  const SurfaceFeatures target_features(target.first, config());
+  EXPECT_EQ(source_features.size(), source.first.size());
+  for (int run = 0; run < 2; ++run) {
+    const RegistrationResult prepared =
+        registerSurfaces(source_features, target_features, config());
+    ASSERT_TRUE(prepared.converged) << prepared.reason;
+    EXPECT_TRUE(prepared.T_target_source.matrix() == plain.T_target_source.matrix()) << run;
+    EXPECT_EQ(prepared.fitness, plain.fitness);
+    EXPECT_EQ(prepared.target_coverage, plain.target_coverage);
+    EXPECT_EQ(prepared.correspondences, plain.correspondences);
+    EXPECT_EQ(prepared.horizontal_constraint, plain.horizontal_constraint);
+  }
+  RegistrationConfig wider = config();
+  wider.feature_radius_voxels = 8.0f;
+  EXPECT_FALSE(source_features.preparedFor(wider));
+  EXPECT_THROW(registerSurfaces(source_features, target_features, wider), InputError);
+  try {
+    const SurfaceFeatures empty(SurfaceCloud{}, config(), "model 7's cloud");
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("model 7's cloud is empty"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(ObjectRegistration, IsDeterministicForASeed) {
   const auto target = view(kChair, sim::floorPose(Eigen::Vector2d(0.0, 0.0), 0.0), 30.0, 35.0, 1);
   const auto source =

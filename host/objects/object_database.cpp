@@ -237,6 +237,9 @@ SegmentOutcome ObjectDatabase::addSegment(int session, const TsdfMap& session_ma
   }
   const ObjectModel& changed = *findModel(outcome.model_id);
   prefilter_.upsert(changed.id, changed.extent_m, changed.mean_color);
+  // Merged, founded or joined: its samples changed (joined ones are gone).
+  model_features_.erase(changed.id);
+  for (const int id : outcome.joined_models) model_features_.erase(id);
   outcome.ms = msSince(start);
   return outcome;
 }
@@ -249,6 +252,7 @@ ObjectDatabase::Match ObjectDatabase::bestMatch(const ObjectObservation& observa
   const std::vector<int> candidates =
       prefilter_.candidates(observation.extent_m, observation.mean_color);
   outcome.candidates = static_cast<int>(candidates.size());
+  std::optional<SurfaceFeatures> observed;  // prepared at the first registration, then reused
   for (const int id : candidates) {
     const ObjectModel* model = findModel(id);
     if (model == nullptr || model->surface_M.empty()) continue;
@@ -257,8 +261,11 @@ ObjectDatabase::Match ObjectDatabase::bestMatch(const ObjectObservation& observa
       appendRefusal(outcome.refused, id, mismatch);
       continue;
     }
+    if (!observed) {
+      observed.emplace(observation.surface_O, config_.registration, "observation's cloud");
+    }
     const RegistrationResult registration =
-        registerSurfaces(observation.surface_O, model->surface_M, config_.registration,
+        registerSurfaces(*observed, modelFeatures(*model), config_.registration,
                          floorHeightShift(observation, *model));
     if (!registration.converged) {
       appendRefusal(outcome.refused, id, "registration: " + registration.reason);
@@ -373,6 +380,22 @@ std::string ObjectDatabase::heightRefusal(const SurfaceCloud& cloud, const Eigen
   }
   const float voxel_m = config_.registration.voxel_size_m;
   return heightMismatch(spanOf(cloud, voxel_m), spanOf(model.surface_M, voxel_m), config_);
+}
+
+void ObjectDatabase::prepareModels() const {
+  for (const ObjectModel& model : models_) {
+    if (!model.surface_M.empty()) modelFeatures(model);
+  }
+}
+
+const SurfaceFeatures& ObjectDatabase::modelFeatures(const ObjectModel& model) const {
+  auto it = model_features_.find(model.id);
+  if (it == model_features_.end() || !it->second.preparedFor(config_.registration)) {
+    const SurfaceFeatures prepared(model.surface_M, config_.registration,
+                                   "model " + std::to_string(model.id) + "'s cloud");
+    it = model_features_.insert_or_assign(model.id, prepared).first;
+  }
+  return it->second;
 }
 
 std::optional<double> ObjectDatabase::floorHeightShift(const ObjectObservation& observation,

@@ -11,6 +11,7 @@
 //   are skipped with the reason recorded. Several segments of one session may join one model
 //   (identical shapes: the database stores shapes and their instances).
 // Thread safety: not thread safe; one ObjectDatabase per thread.
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -138,6 +139,11 @@ class ObjectDatabase {
   /// model's TSDF colour).
   Mesh sessionObjects(int session) const;
 
+  /// Prepares every model's samples for registration now (FPFH and search trees, kept until the
+  /// model changes), so that the first session after a load does not pay for them; matching
+  /// prepares a model at its first registration otherwise. Copies of the database share them.
+  void prepareModels() const;
+
   /// For the file reader: a database with these models and sessions (ids kept).
   static ObjectDatabase fromParts(const DatabaseConfig& config, std::vector<ObjectModel> models,
                                   std::vector<int> sessions);
@@ -172,12 +178,17 @@ class ObjectDatabase {
   /// (floor_fixes_height), else nullopt: the registration estimates it.
   std::optional<double> floorHeightShift(const ObjectObservation& observation,
                                          const ObjectModel& model) const;
+  /// The model's samples prepared for registration: computed at its first registration after it
+  /// changed, kept until it changes again (addSegment drops the entry of a model it merged into,
+  /// founded or joined).
+  const SurfaceFeatures& modelFeatures(const ObjectModel& model) const;
 
   DatabaseConfig config_;
   std::vector<ObjectModel> models_;
   std::vector<int> sessions_;
   ModelPrefilter prefilter_;
   int next_id_ = 1;
+  mutable std::map<int, SurfaceFeatures> model_features_;  // by model id; a cache, see above
   float floor_z_m_ = 0.0f;  // of the session being added (world frame)
 };
 

@@ -29,13 +29,11 @@
 
 #include "core/error.h"
 #include "objects/internal/registration_ransac.h"
+#include "objects/internal/surface_features_impl.h"
 
 namespace strata::objects {
 
 namespace {
-
-using Cloud = pcl::PointCloud<pcl::PointNormal>;
-using Features = pcl::PointCloud<pcl::FPFHSignature33>;
 
 /// Hypotheses with the most correspondence inliers scored on the whole clouds, and of those the
 /// best few refined by ICP: enough for a symmetric object's two or four equivalent poses.
@@ -48,76 +46,21 @@ std::string degrees(double value) {
   return text;
 }
 
-void requireCloud(const SurfaceCloud& cloud, const char* which) {
-  if (cloud.empty()) {
-    throw InputError(std::string("registerSurfaces: the ") + which + " cloud is empty");
-  }
-  if (cloud.normals.size() != cloud.points.size()) {
-    throw InputError(std::string("registerSurfaces: the ") + which + " cloud has " +
-                     std::to_string(cloud.points.size()) + " points but " +
-                     std::to_string(cloud.normals.size()) + " normals");
-  }
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    const float length = cloud.normals[i].norm();
-    if (!cloud.points[i].allFinite() || !std::isfinite(length) || std::abs(length - 1.0f) > 0.1f) {
-      throw InputError(std::string("registerSurfaces: the ") + which + " cloud's point " +
-                       std::to_string(i) + " has no unit normal (length " + std::to_string(length) +
-                       ") or a non-finite position");
-    }
-  }
-}
-
-Cloud::Ptr toPcl(const SurfaceCloud& cloud) {
-  Cloud::Ptr out(new Cloud);
-  out->resize(cloud.size());
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    pcl::PointNormal& p = (*out)[i];
-    p.getVector3fMap() = cloud.points[i];
-    p.getNormalVector3fMap() = cloud.normals[i];
-    p.curvature = 0.0f;
-  }
-  return out;
-}
-
-Features::Ptr computeFpfh(const Cloud::Ptr& cloud, float radius_m) {
-  pcl::FPFHEstimation<pcl::PointNormal, pcl::PointNormal, pcl::FPFHSignature33> estimation;
-  estimation.setInputCloud(cloud);
-  estimation.setInputNormals(cloud);
-  estimation.setSearchMethod(pcl::make_shared<pcl::search::KdTree<pcl::PointNormal>>());
-  estimation.setRadiusSearch(radius_m);
-  Features::Ptr features(new Features);
-  estimation.compute(*features);
-  return features;
-}
-
-bool finiteFeature(const pcl::FPFHSignature33& f) {
-  return std::all_of(std::begin(f.histogram), std::end(f.histogram),
-                     [](float v) { return std::isfinite(v); });
-}
-
 /// Each source point with a finite descriptor paired with the target points of the `neighbours`
 /// nearest ones.
-std::vector<Correspondence> matchFeatures(const Features::Ptr& source, const Features::Ptr& target,
-                                          int neighbours) {
-  Features::Ptr finite_target(new Features);
-  std::vector<int> target_index;
-  for (std::size_t i = 0; i < target->size(); ++i) {
-    if (!finiteFeature((*target)[i])) continue;
-    finite_target->push_back((*target)[i]);
-    target_index.push_back(static_cast<int>(i));
-  }
+std::vector<Correspondence> matchFeatures(const SurfaceFeatures::Impl& source,
+                                          const SurfaceFeatures::Impl& target, int neighbours) {
   std::vector<Correspondence> out;
-  if (finite_target->empty()) return out;
-  pcl::KdTreeFLANN<pcl::FPFHSignature33> tree;
-  tree.setInputCloud(finite_target);
+  if (target.finite_fpfh->empty()) return out;
   std::vector<int> nearest(static_cast<std::size_t>(neighbours));
   std::vector<float> distance(static_cast<std::size_t>(neighbours));
-  for (std::size_t i = 0; i < source->size(); ++i) {
-    if (!finiteFeature((*source)[i])) continue;
-    const int found = tree.nearestKSearch((*source)[i], neighbours, nearest, distance);
-    for (int k = 0; k < found; ++k) {
-      out.push_back({static_cast<int>(i),
-                     target_index[static_cast<std::size_t>(nearest[static_cast<std::size_t>(k)])]});
+  for (std::size_t k = 0; k < source.finite_fpfh->size(); ++k) {
+    const int found = target.descriptor_tree.nearestKSearch((*source.finite_fpfh)[k], neighbours,
+                                                            nearest, distance);
+    for (int j = 0; j < found; ++j) {
+      out.push_back(
+          {source.finite_index[k],
+           target.finite_index[static_cast<std::size_t>(nearest[static_cast<std::size_t>(j)])]});
     }
   }
   return out;
@@ -141,7 +84,7 @@ double weakestHorizontal(double xx, double xy, double yy, std::size_t count) {
   return std::max(0.0, mean - half_gap);
 }
 
-Fit scoreFit(const Cloud& source, const pcl::KdTreeFLANN<pcl::PointNormal>& target_tree,
+Fit scoreFit(const Cloud& source, const pcl::search::KdTree<pcl::PointNormal>& target_tree,
              const Eigen::Matrix4f& T, float inlier_m) {
   std::vector<int> nearest(1);
   std::vector<float> squared(1);
@@ -261,11 +204,13 @@ Eigen::Matrix4f iterateIcp(
 /// distance) matters on partial views: there the fine stage alone leaves the directions few
 /// planes constrain where the hypothesis put them (1-2 cm off on chairs seen from 90 deg apart,
 /// within 6 mm with the coarse stage).
-Eigen::Matrix4f refineIcp(const Cloud::Ptr& source, const Cloud::Ptr& target,
+Eigen::Matrix4f refineIcp(const Cloud::Ptr& source, const SurfaceFeatures::Impl& target_features,
                           const Eigen::Matrix4f& guess, const RegistrationConfig& config,
                           std::optional<float> fixed_z_m) {
+  const Cloud::Ptr& target = target_features.cloud;
   pcl::registration::CorrespondenceEstimation<pcl::PointNormal, pcl::PointNormal, float> search;
   search.setInputTarget(target);
+  search.setSearchMethodTarget(target_features.point_tree, true);  // built once, with the target
   const Eigen::Matrix4f coarse = iterateIcp(search, source, target, guess,
                                             config.icp_coarse_distance_voxels * config.voxel_size_m,
                                             config.icp_iterations, fixed_z_m);
@@ -280,12 +225,11 @@ struct Refined {
   Eigen::Matrix4f T;
   Fit fit;
 };
-std::optional<Refined> refineBest(const Cloud::Ptr& source, const Cloud::Ptr& target,
+std::optional<Refined> refineBest(const Cloud::Ptr& source, const SurfaceFeatures::Impl& target,
                                   const std::vector<Hypothesis>& hypotheses,
                                   const RegistrationConfig& config,
                                   std::optional<float> fixed_z_m) {
-  pcl::KdTreeFLANN<pcl::PointNormal> target_tree;
-  target_tree.setInputCloud(target);
+  const pcl::search::KdTree<pcl::PointNormal>& target_tree = *target.point_tree;
   const float inlier_m = config.inlier_distance_voxels * config.voxel_size_m;
   std::vector<std::pair<double, Eigen::Matrix4f>> scored;
   for (const Hypothesis& h : hypotheses) {
@@ -310,7 +254,7 @@ double targetCoverage(const Cloud& source, const Cloud& target, const Eigen::Mat
                       const RegistrationConfig& config) {
   Cloud::Ptr moved(new Cloud);
   pcl::transformPointCloudWithNormals(source, *moved, T);
-  pcl::KdTreeFLANN<pcl::PointNormal> moved_tree;
+  pcl::search::KdTree<pcl::PointNormal> moved_tree;
   moved_tree.setInputCloud(moved);
   return scoreFit(target, moved_tree, Eigen::Matrix4f::Identity(),
                   config.inlier_distance_voxels * config.voxel_size_m)
@@ -343,15 +287,33 @@ RegistrationResult registerSurfaces(const SurfaceCloud& source, const SurfaceClo
                                     const RegistrationConfig& config,
                                     std::optional<double> vertical_translation_m) {
   const auto start = std::chrono::steady_clock::now();
+  const SurfaceFeatures source_features(source, config, "source cloud");
+  const SurfaceFeatures target_features(target, config, "target cloud");
+  RegistrationResult result =
+      registerSurfaces(source_features, target_features, config, vertical_translation_m);
+  result.ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+RegistrationResult registerSurfaces(const SurfaceFeatures& source_features,
+                                    const SurfaceFeatures& target_features,
+                                    const RegistrationConfig& config,
+                                    std::optional<double> vertical_translation_m) {
+  const auto start = std::chrono::steady_clock::now();
   config.validate();
-  requireCloud(source, "source");
-  requireCloud(target, "target");
+  if (!source_features.preparedFor(config) || !target_features.preparedFor(config)) {
+    throw InputError("registerSurfaces: features prepared with another descriptor support than " +
+                     std::to_string(config.feature_radius_voxels * config.voxel_size_m) + " m");
+  }
   if (vertical_translation_m && !std::isfinite(*vertical_translation_m)) {
     throw InputError("registerSurfaces: the vertical translation is not finite");
   }
   const std::optional<float> fixed_z_m =
       vertical_translation_m ? std::optional<float>(static_cast<float>(*vertical_translation_m))
                              : std::nullopt;
+  const SurfaceFeatures::Impl& source = source_features.impl();
+  const SurfaceFeatures::Impl& target = target_features.impl();
   RegistrationResult result;
   auto finish = [&](const std::string& reason) {
     result.reason = reason;
@@ -361,12 +323,8 @@ RegistrationResult registerSurfaces(const SurfaceCloud& source, const SurfaceClo
     return result;
   };
   try {
-    const Cloud::Ptr source_pcl = toPcl(source);
-    const Cloud::Ptr target_pcl = toPcl(target);
-    const float radius_m = config.feature_radius_voxels * config.voxel_size_m;
     const std::vector<Correspondence> matches =
-        matchFeatures(computeFpfh(source_pcl, radius_m), computeFpfh(target_pcl, radius_m),
-                      config.feature_neighbours);
+        matchFeatures(source, target, config.feature_neighbours);
     result.correspondences = static_cast<int>(matches.size());
     const std::vector<Hypothesis> hypotheses =
         config.four_dof
@@ -380,7 +338,7 @@ RegistrationResult registerSurfaces(const SurfaceCloud& source, const SurfaceClo
                     " feature correspondences");
     }
     const std::optional<Refined> best =
-        refineBest(source_pcl, target_pcl, hypotheses, config, fixed_z_m);
+        refineBest(source.cloud, target, hypotheses, config, fixed_z_m);
     if (!best) {
       return finish("ICP tilted every hypothesis by more than " + degrees(config.max_tilt_deg));
     }
@@ -390,7 +348,7 @@ RegistrationResult registerSurfaces(const SurfaceCloud& source, const SurfaceClo
     result.fitness = best_fit.fitness;
     result.rmse_m = best_fit.rmse_m;
     result.horizontal_constraint = best_fit.horizontal_constraint;
-    result.target_coverage = targetCoverage(*source_pcl, *target_pcl, best_T, config);
+    result.target_coverage = targetCoverage(*source.cloud, *target.cloud, best_T, config);
     if (best_fit.fitness <= 0.0) return finish("no source point near the target after ICP");
     return finish("");
   } catch (const pcl::PCLException& e) {

@@ -4,10 +4,14 @@
 // translation from 2 pairs (four_dof) or 6 DoF refusing tilted hypotheses) then
 // local (point-to-plane ICP, coarse then fine). Deterministic for a seed.
 // Built on PCL (Debian libpcl-dev); docs/objects.md says why PCL and which of its classes.
-// Everything PCL stays in the .cpp files: callers see Eigen and SurfaceCloud only.
-// Thread safety: free function, no shared state (PCL objects are local to the call).
+// Everything PCL stays in the .cpp files (and internal/): callers see Eigen, SurfaceCloud and the
+// opaque SurfaceFeatures.
+// Thread safety: registerSurfaces on plain clouds shares no state (PCL objects are local to the
+// call); on SurfaceFeatures, as SurfaceFeatures says.
 #include <Eigen/Geometry>
+#include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -60,6 +64,28 @@ struct RegistrationResult {
   double ms = 0.0;
 };
 
+/// A cloud prepared for registration: its FPFH descriptors (support feature_radius_voxels x
+/// voxel_size_m), a k-d tree over them and one over its points. registerSurfaces on plain clouds
+/// computes these for both on every call; prepared once, a segment's serve every candidate model
+/// and a model's every later segment. Immutable; copies share the data. InputError as
+/// registerSurfaces for an empty cloud, missing normals or a bad config (`name` names the cloud).
+/// Thread safety: one thread at a time (PCL does not document its search structures as safe for
+/// concurrent queries).
+class SurfaceFeatures {
+ public:
+  SurfaceFeatures(const SurfaceCloud& cloud, const RegistrationConfig& config,
+                  const std::string& name = "cloud");
+  std::size_t size() const;
+  /// Whether these were prepared with `config`'s descriptor support.
+  bool preparedFor(const RegistrationConfig& config) const;
+
+  struct Impl;  // PCL types (internal/surface_features_impl.h)
+  const Impl& impl() const { return *impl_; }
+
+ private:
+  std::shared_ptr<const Impl> impl_;
+};
+
 /// Registers `source` onto `target` (both with normals, in their own frames). Never throws for
 /// unlucky data (converged = false with the reason); InputError for empty clouds, missing normals,
 /// a bad config or a non-finite vertical translation.
@@ -68,6 +94,11 @@ struct RegistrationResult {
 /// without the floor a view whose faces are all vertical (a tall stack whose top the camera does
 /// not see) fits itself slid up or down. RANSAC hypotheses take this z and ICP holds it.
 RegistrationResult registerSurfaces(const SurfaceCloud& source, const SurfaceCloud& target,
+                                    const RegistrationConfig& config,
+                                    std::optional<double> vertical_translation_m = std::nullopt);
+/// The same on prepared clouds; the result is identical. InputError also when either was prepared
+/// with another descriptor support than `config`'s.
+RegistrationResult registerSurfaces(const SurfaceFeatures& source, const SurfaceFeatures& target,
                                     const RegistrationConfig& config,
                                     std::optional<double> vertical_translation_m = std::nullopt);
 
