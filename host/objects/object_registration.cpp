@@ -322,6 +322,9 @@ RegistrationResult registerSurfaces(const SurfaceFeatures& source_features,
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return result;
   };
+  if (!source.failure.empty() || !target.failure.empty()) {
+    return finish("PCL failed: " + (source.failure.empty() ? target.failure : source.failure));
+  }
   try {
     const std::vector<Correspondence> matches =
         matchFeatures(source, target, config.feature_neighbours);

@@ -1,5 +1,7 @@
 // SurfaceFeatures: a cloud's FPFH descriptors and search trees, prepared once for many
 // registrations (object_registration.h).
+#include <pcl/exceptions.h>
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -64,18 +66,22 @@ SurfaceFeatures::SurfaceFeatures(const SurfaceCloud& cloud, const RegistrationCo
   requireCloud(cloud, name);
   auto impl = std::make_shared<Impl>();
   impl->points = cloud.points;
-  impl->cloud = toPcl(cloud);
-  impl->point_tree = pcl::make_shared<pcl::search::KdTree<pcl::PointNormal>>();
-  impl->point_tree->setInputCloud(impl->cloud);
   impl->radius_m = config.feature_radius_voxels * config.voxel_size_m;
-  impl->fpfh = computeFpfh(impl->cloud, impl->point_tree, impl->radius_m);
   impl->finite_fpfh.reset(new Features);
-  for (std::size_t i = 0; i < impl->fpfh->size(); ++i) {
-    if (!finiteFeature((*impl->fpfh)[i])) continue;
-    impl->finite_fpfh->push_back((*impl->fpfh)[i]);
-    impl->finite_index.push_back(static_cast<int>(i));
+  try {
+    impl->cloud = toPcl(cloud);
+    impl->point_tree = pcl::make_shared<pcl::search::KdTree<pcl::PointNormal>>();
+    impl->point_tree->setInputCloud(impl->cloud);
+    impl->fpfh = computeFpfh(impl->cloud, impl->point_tree, impl->radius_m);
+    for (std::size_t i = 0; i < impl->fpfh->size(); ++i) {
+      if (!finiteFeature((*impl->fpfh)[i])) continue;
+      impl->finite_fpfh->push_back((*impl->fpfh)[i]);
+      impl->finite_index.push_back(static_cast<int>(i));
+    }
+    if (!impl->finite_fpfh->empty()) impl->descriptor_tree.setInputCloud(impl->finite_fpfh);
+  } catch (const pcl::PCLException& e) {
+    impl->failure = e.what();
   }
-  if (!impl->finite_fpfh->empty()) impl->descriptor_tree.setInputCloud(impl->finite_fpfh);
   impl_ = std::move(impl);
 }
 

@@ -7,6 +7,7 @@
 #include <pcl/search/kdtree.h>
 
 #include <Eigen/Core>
+#include <string>
 #include <vector>
 
 #include "objects/object_registration.h"
@@ -27,6 +28,9 @@ struct SurfaceFeatures::Impl {
   pcl::KdTreeFLANN<pcl::FPFHSignature33> descriptor_tree;
   /// A k-d tree over the points (nearest points in scoring and in ICP's correspondences).
   pcl::search::KdTree<pcl::PointNormal>::Ptr point_tree;
+  /// PCL's exception text when preparing failed ("" otherwise): registerSurfaces then reports
+  /// the registration as not converged with it, as for any unlucky data.
+  std::string failure;
 };
 
 }  // namespace strata::objects
