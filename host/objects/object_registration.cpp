@@ -12,8 +12,6 @@
 
 #include <pcl/common/transforms.h>
 #include <pcl/exceptions.h>
-#include <pcl/features/fpfh.h>
-#include <pcl/kdtree/kdtree_flann.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 #include <pcl/registration/correspondence_estimation.h>
