@@ -1,6 +1,12 @@
 # Warnings on from day one; -Werror where STRATA_WERROR is set (CI).
 function(strata_set_target_defaults target)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wno-missing-field-initializers)
+  # NOTE: in a unity batch every source but the first is an included file, and GCC then flags a
+  # class of one file holding a type of that file's anonymous namespace (-Wsubobject-linkage),
+  # which is harmless where the class is file-local as well.
+  if(STRATA_UNITY_BUILD AND CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
+    target_compile_options(${target} PRIVATE -Wno-subobject-linkage)
+  endif()
   if(STRATA_WERROR)
     target_compile_options(${target} PRIVATE -Werror)
   endif()

@@ -20,9 +20,9 @@ function(strata_add_shaders target)
     set(cpp "${out_dir}/${stem}.spv.cpp")
     add_custom_command(
       OUTPUT "${spv}" "${cpp}" "${out_dir}/${stem}.spvasm"
-      COMMAND "${GLSLANG_VALIDATOR}" --target-env vulkan1.2 -I${ARG_INCLUDE_DIR} -V "${src_abs}" -o "${spv}"
+      # One compile writes the binary and prints its disassembly (-H) for review.
       COMMAND "${GLSLANG_VALIDATOR}" --target-env vulkan1.2 -I${ARG_INCLUDE_DIR} -V -H "${src_abs}"
-              -o "${out_dir}/${stem}.tmp.spv" > "${out_dir}/${stem}.spvasm"
+              -o "${spv}" > "${out_dir}/${stem}.spvasm"
       COMMAND ${CMAKE_COMMAND} -DSPV=${spv} -DOUT=${cpp} -DSTEM=${stem}
               -P "${PROJECT_SOURCE_DIR}/cmake/EmbedSpirv.cmake"
       DEPENDS "${src_abs}" ${common_headers} "${PROJECT_SOURCE_DIR}/cmake/EmbedSpirv.cmake"

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# scripts/fuzz.sh [seconds_per_target=60]: runs every libFuzzer target of fuzz/ for the given time,
-# two at a time (one per core), each from a fresh copy of its committed corpus fuzz/corpus/<name>/
+# scripts/fuzz.sh [seconds_per_target=60] | --total SECONDS: runs every libFuzzer target of fuzz/
+# for the given time, two at a time (one per core); with --total, one budget of wall time for all
+# of them (each target gets budget * 2 / targets seconds, at least 5: what CI runs), each from a fresh copy of its committed corpus fuzz/corpus/<name>/
 # (the committed corpus is never written), with its dictionary fuzz/dict/<name>.dict when there is
 # one. Builds nothing when build-san/ exists (configures and builds it otherwise, like
 # scripts/sanitize.sh). Prints executions per second and total executions per target, writes
@@ -9,8 +10,16 @@
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 BUILD="${STRATA_SANITIZE_BUILD_DIR:-$ROOT/build-san}"
-SECONDS_PER_TARGET="${1:-60}"
 JOBS=2
+TOTAL_SECONDS=""
+if [[ "${1:-}" == --total ]]; then
+  TOTAL_SECONDS="${2:?fuzz.sh: --total needs a number of seconds}"
+  [[ "$TOTAL_SECONDS" =~ ^[0-9]+$ ]] || { echo "fuzz.sh: --total '$TOTAL_SECONDS' is not a whole number of seconds" >&2; exit 2; }
+  SECONDS_PER_TARGET=""
+else
+  SECONDS_PER_TARGET="${1:-60}"
+  [[ "$SECONDS_PER_TARGET" =~ ^[0-9]+$ ]] || { echo "fuzz.sh: '$SECONDS_PER_TARGET' is not a whole number of seconds per target" >&2; exit 2; }
+fi
 # Per input: 1 s of run time, 2 GiB of resident memory, and no single allocation over 1 GiB (the
 # parsers' own limits keep every allocation proportional to the input, far below this).
 MALLOC_LIMIT_MB=1024
@@ -47,6 +56,11 @@ for source in "$ROOT"/fuzz/fuzz_*.cpp; do
   fi
   TARGETS+=("$name")
 done
+if [[ -n "$TOTAL_SECONDS" ]]; then
+  SECONDS_PER_TARGET=$((TOTAL_SECONDS * JOBS / ${#TARGETS[@]}))
+  ((SECONDS_PER_TARGET >= 5)) || SECONDS_PER_TARGET=5
+  echo "fuzz.sh: ${TOTAL_SECONDS} s in all for ${#TARGETS[@]} targets, ${JOBS} at a time: ${SECONDS_PER_TARGET} s each"
+fi
 
 run_target() {
   local name="$1" work="$RUN/$1"

@@ -1,19 +1,78 @@
 #!/usr/bin/env bash
-# README command 2: install dependencies, build in Release with warnings as errors, run every test
-# on lavapipe with the Vulkan validation layer on. Tests needing ../shared/data skip without it.
+# README command 2 (what CI runs): install dependencies, build in Release with warnings as errors,
+# run every test on lavapipe with the Vulkan validation layer on, then the unit and device tests
+# under ASan + UBSan with staged device memory (the heavy device tests staged in the Release build),
+# and the fuzzers. Tests
+# needing ../shared/data skip without it. Ends with a table of every stage's time (also written to
+# build/stage-times.json). docs/build.md: what each stage costs and why.
+#
+#   scripts/run-tests.sh           the whole run, as CI
+#   scripts/run-tests.sh --quick   the local loop: build, then the unit and device tests of the
+#                                  test executables this build relinked (all of them on a first
+#                                  build); no install, no sanitizers, no fuzzing
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-"$ROOT/scripts/install-deps.sh"
-"$ROOT/scripts/build.sh" -DSTRATA_BUILD_TESTS=ON -DSTRATA_WERROR=ON
-cd "$ROOT/build"
+QUICK=0
+case "${1:-}" in
+  --quick) QUICK=1 ;;
+  "") ;;
+  *) echo "run-tests.sh: unknown argument '$1' (--quick or nothing)" >&2; exit 2 ;;
+esac
+export STRATA_STAGE_JSON="$ROOT/build/stage-times.json"
+source "$ROOT/scripts/lib/stages.sh"
+BUILD="$ROOT/build"
+CMAKE_ARGS=(-DSTRATA_BUILD_TESTS=ON -DSTRATA_WERROR=ON)
+
+# The quick loop: test executables whose file changed in this build, labelled unit or device.
+quick_tests() {
+  local before="$1" changed=() name label path
+  while read -r name label path; do
+    [[ "$label" == unit || "$label" == device ]] || continue
+    [[ -x "$path" ]] || continue
+    if ! grep -qxF "$path $(stat -c %Y "$path")" "$before"; then changed+=("$path"); fi
+  done <"$BUILD/strata_tests.txt"
+  if ((${#changed[@]} == 0)); then
+    echo "run-tests.sh --quick: no unit or device test executable changed in this build"
+    return 0
+  fi
+  echo "run-tests.sh --quick: ${#changed[@]} changed test executables: ${changed[*]##*/}"
+  # Two at a time (one per core), each with the validation layer on, as ctest runs them.
+  printf '%s\n' "${changed[@]}" |
+    STRATA_VALIDATION=1 xargs -P 2 -I{} sh -c '"$1" --gtest_brief=1 >"$1.quick.log" 2>&1 &&
+      echo "passed: ${1##*/}" || { echo "FAILED: ${1##*/} (log: $1.quick.log)"; tail -40 "$1.quick.log"; exit 1; }' _ {}
+}
+
+if ((QUICK)); then
+  stage_plan build tests
+  snapshot="$(mktemp)"
+  trap 'status=$?; rm -f "$snapshot"; stage_table >&2; exit $status' EXIT
+  if [[ -f "$BUILD/strata_tests.txt" ]]; then
+    while read -r _ _ path; do
+      [[ -e "$path" ]] && echo "$path $(stat -c %Y "$path")"
+    done <"$BUILD/strata_tests.txt" >"$snapshot"
+  fi
+  stage build "$ROOT/scripts/build.sh" "${CMAKE_ARGS[@]}"
+  stage tests quick_tests "$snapshot"
+  exit 0
+fi
+
+stage_plan install build tests staged-memory sanitizer-build sanitizer-tests fuzzing
+stage install "$ROOT/scripts/install-deps.sh"
+stage build "$ROOT/scripts/build.sh" "${CMAKE_ARGS[@]}"
+cd "$BUILD"
 # Everything but the quarter-hour runs labelled long (`ctest -L long` runs them; README "Tests").
-ctest --output-on-failure -j 2 --timeout 900 -LE long
-# The path of a discrete GPU (device-local memory never mapped, every copy staged), tested here on
-# lavapipe on every change.
-STRATA_DEVICE_MEMORY=staged ctest --output-on-failure -j 2 --timeout 900 -L device
-# Sanitizers: everything rebuilt with clang, ASan + UBSan (build-san/), the unit and device tests
-# again under them (validation layer on; any report fails). Then every parser of outside data
-# fuzzed from its committed corpus for a bounded time (STRATA_FUZZ_SECONDS per target, 15 by
-# default). The acceptance runs are left to the build above. docs/reliability.md.
-"$ROOT/scripts/sanitize.sh"
-"$ROOT/scripts/fuzz.sh" "${STRATA_FUZZ_SECONDS:-15}"
+stage tests ctest --output-on-failure -j 2 --timeout 900 -LE long
+# The path of a discrete GPU (device-local memory never mapped, every copy staged), tested on
+# lavapipe on every change: the device tests run staged under the sanitizers below, and here the
+# heavy ones the sanitizer stage leaves out (scripts/sanitizers/heavy-tests.txt), so every device
+# test runs once each way.
+heavy="$(grep -v '^#' "$ROOT/scripts/sanitizers/heavy-tests.txt" | grep . | paste -sd '|')"
+stage staged-memory env STRATA_DEVICE_MEMORY=staged \
+  ctest --output-on-failure -j 2 --timeout 900 -L device -R "^(${heavy})$"
+# Sanitizers: the libraries, the unit and device tests and the fuzzers built with clang, ASan +
+# UBSan (build-san/); those tests again under them, device memory staged (validation layer on; any
+# report fails). Then every parser of outside data fuzzed from its committed corpus within one time
+# budget. The acceptance runs are left to the build above. docs/reliability.md, docs/build.md.
+stage sanitizer-build "$ROOT/scripts/sanitize.sh" build
+stage sanitizer-tests env STRATA_DEVICE_MEMORY=staged "$ROOT/scripts/sanitize.sh" test
+stage fuzzing "$ROOT/scripts/fuzz.sh" --total "${STRATA_FUZZ_TOTAL_SECONDS:-120}"

@@ -1,26 +1,58 @@
 #!/usr/bin/env bash
-# Builds Strata with clang, AddressSanitizer, UndefinedBehaviorSanitizer and libFuzzer coverage into
-# build-san/ and runs the unit and device tests under the sanitizers with the Vulkan validation layer
-# on. Any sanitizer report fails the test that triggered it (and so this script). The multi-minute
-# acceptance runs are left to the normal build, and so are the heaviest unit/device tests listed in
-# scripts/sanitizers/heavy-tests.txt unless STRATA_SANITIZE_ALL=1. Extra arguments go to ctest
-# (e.g. -R Mesh).
+# scripts/sanitize.sh [build|test|all] [ctest arguments...]: Strata with clang, AddressSanitizer,
+# UndefinedBehaviorSanitizer and libFuzzer coverage in build-san/, and the unit and device tests
+# run under the sanitizers with the Vulkan validation layer on. Any sanitizer report fails the test
+# that triggered it (and so this script).
+#   build  configures and builds what the stage is for: every library (through the test
+#          executables labelled unit or device, which link all of them), the programs those tests
+#          start, and the libFuzzer targets; not the benchmarks and not the acceptance tests.
+#   test   runs the unit and device tests (ctest arguments after it, e.g. -R Mesh).
+#   all    (the default) both.
+# The heaviest unit/device tests, listed in scripts/sanitizers/heavy-tests.txt, are left to the
+# normal build unless STRATA_SANITIZE_ALL=1.
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 # ccache (the build's compiler launcher when installed) with paths relative to the clone and the
 # working directory out of the hash of debug builds: a clean clone at another path hits the cache
 # an earlier clone filled.
 export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$ROOT}" CCACHE_NOHASHDIR="${CCACHE_NOHASHDIR:-true}"
+# The tests' precompiled header: ccache caches the objects that use it only with these.
+export CCACHE_SLOPPINESS="${CCACHE_SLOPPINESS:-pch_defines,time_macros,include_file_mtime,include_file_ctime}"
 BUILD="${STRATA_SANITIZE_BUILD_DIR:-$ROOT/build-san}"
-CC=clang CXX=clang++ cmake -S "$ROOT" -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DSTRATA_BUILD_FUZZ=ON -DSTRATA_BUILD_BENCH=OFF -DSTRATA_WITH_OPEN3D=OFF -DSTRATA_BUILD_TESTS=ON
-cmake --build "$BUILD" -j "$(nproc)"
-source "$ROOT/scripts/sanitizers/env.sh"
-cd "$BUILD"
-exclude=()
-if [[ "${STRATA_SANITIZE_ALL:-0}" != 1 ]]; then
-  heavy="$(grep -v '^#' "$ROOT/scripts/sanitizers/heavy-tests.txt" | grep . | paste -sd '|')"
-  exclude=(-E "^(${heavy})$")  # "." in a name matches itself too
-  echo "sanitize.sh: leaving $(grep -vc '^#' "$ROOT/scripts/sanitizers/heavy-tests.txt") heavy tests to the normal build (STRATA_SANITIZE_ALL=1 runs them)"
-fi
-ctest --output-on-failure -j 2 --timeout 900 -L "unit|device" "${exclude[@]}" "$@"
+MODE=all
+case "${1:-}" in
+  build | test | all) MODE="$1"; shift ;;
+esac
+
+build() {
+  CC=clang CXX=clang++ cmake -S "$ROOT" -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DSTRATA_BUILD_FUZZ=ON -DSTRATA_BUILD_BENCH=OFF -DSTRATA_WITH_OPEN3D=OFF -DSTRATA_BUILD_TESTS=ON \
+    "${STRATA_SANITIZE_CMAKE_ARGS[@]}"
+  local targets=()
+  while read -r name label _; do
+    [[ "$label" == unit || "$label" == device ]] && targets+=("$name")
+  done <"$BUILD/strata_tests.txt"
+  for source in "$ROOT"/fuzz/fuzz_*.cpp; do targets+=("$(basename "$source" .cpp)"); done
+  echo "sanitize.sh: building ${#targets[@]} targets (unit and device tests, fuzzers) in $BUILD"
+  cmake --build "$BUILD" -j "$(nproc)" --target "${targets[@]}"
+}
+
+run_tests() {
+  source "$ROOT/scripts/sanitizers/env.sh"
+  cd "$BUILD"
+  local exclude=()
+  if [[ "${STRATA_SANITIZE_ALL:-0}" != 1 ]]; then
+    local heavy
+    heavy="$(grep -v '^#' "$ROOT/scripts/sanitizers/heavy-tests.txt" | grep . | paste -sd '|')"
+    exclude=(-E "^(${heavy})$")  # "." in a name matches itself too
+    echo "sanitize.sh: leaving $(grep -vc '^#' "$ROOT/scripts/sanitizers/heavy-tests.txt") heavy tests to the normal build (STRATA_SANITIZE_ALL=1 runs them)"
+  fi
+  ctest --output-on-failure -j 2 --timeout 900 -L "unit|device" "${exclude[@]}" "$@"
+}
+
+STRATA_SANITIZE_CMAKE_ARGS=(${STRATA_SANITIZE_CMAKE_ARGS:-})
+case "$MODE" in
+  build) build ;;
+  test) run_tests "$@" ;;
+  all) build && run_tests "$@" ;;
+esac

@@ -10,6 +10,7 @@
 #include "cli/demo_report.h"
 #include "cli/objects_command.h"
 #include "cli/sim_command.h"
+#include "demo_targets.h"
 #include "io/image_io.h"
 #include "mesh/ply.h"
 #include "objects/object_database_file.h"
@@ -19,6 +20,9 @@ namespace strata {
 namespace {
 
 namespace fs = std::filesystem;
+
+// Pairs of segments of one object the truth counts in the CI run below (measured: 16).
+constexpr std::size_t kThreeSessionPairs = 14;
 
 fs::path freshDir(const std::string& name) {
   const fs::path dir = fs::temp_directory_path() / name;
@@ -102,49 +106,17 @@ TEST(ObjectsCommand, SimulatedSessionsWriteEveryOutputAndTheirScore) {
   fs::remove_all(out);
 }
 
-// The demo's last step on the default 5-session room (the demo's settings: 60 frames per
-// session, noise on). Targets: pair precision >= 0.99, recall >= 0.9 (missed, see below), pose
-// median <= 1 cm and <= 2 deg (symmetric yaw of boxes, tables and cylinders is no error).
-TEST(ObjectsDemo, DefaultRoomMeetsItsTargets) {
-  apps::DemoOptions options;
-  options.out_dir = freshDir("strata_objects_demo").string();
-  options.quiet = true;
+// The demo's last step on the first three of the room's five sessions (the demo's settings: 60
+// frames per session, noise on): the CI run of ObjectsDemo.DefaultRoomMeetsItsTargets, which
+// test_demo_long runs over all five (about 2 min on 2 cores, labelled long). Targets as there
+// (demo_targets.h) over the pairs three sessions give; measured (62 s): precision 100 % (10/10),
+// recall 62.5 % (10/16), main segments 71.4 % (10/14: the five-session run's 89 % comes from the
+// later sessions' views), pose median 3.0 mm / 0.19 deg.
+TEST(ObjectsDemo, FirstThreeRoomSessionsMeetTheTargets) {
+  apps::DemoOptions options = test::roomDemoOptions("strata_objects_demo");
+  options.sessions = 3;
   const apps::DemoReport report = apps::runDemoPipeline(options);
-  ASSERT_TRUE(report.objects.has_value());
-  const eval::ObjectDbEvaluation& e = *report.objects;
-  std::printf("[ objects ] room: %s\n", eval::describeObjectDbEvaluation(e).c_str());
-  std::printf("[ objects ] %zu segments, %zu in models; pose max %.1f mm / %.2f deg\n", e.segments,
-              e.segments_in_models, 1000.0 * e.pose.max_translation_m, e.pose.max_rotation_deg);
-  for (const eval::ModelEvaluation& m : e.models) {
-    std::printf(
-        "[ objects ]   model %d: %s (%d), %d instances in %d sessions, area %.3f m2, "
-        "completeness %.2f, growth %.2f, accuracy %.1f mm, pose max %.1f mm / %.1f deg\n",
-        m.model_id, m.name.c_str(), m.object_id, m.instances, m.sessions, m.area_m2, m.completeness,
-        m.growth, 1000.0 * m.accuracy_m, 1000.0 * m.pose_max_translation_m,
-        m.pose_max_rotation_deg);
-  }
-  EXPECT_GE(e.pairs.same_object, 10u) << "objects of the room move more than once";
-  EXPECT_GE(e.pairs.precision(), 0.99);
-  // Target: recall >= 0.9. Measured with 4-DoF registration, the height check, the score's
-  // fitness taken both ways, joining and the floor fixing the height: 60.5 % over all pairs of
-  // segments of one object, 89.2 % between each object's main segments (63.6 / 91.6 % with the
-  // height estimated: two chair views then passed the SDF agreement at 0.75 that now score
-  // 0.74-0.75; the warehouse and the office gained). The gap is over-segmented chair parts
-  // founding models of their own (the size prefilter and the height check keep them from the
-  // chair's model) and partial views refused by the SDF agreement or the free-space test.
-  // Asserted is what holds, a little below the measured figures.
-  EXPECT_GE(e.pairs.recall(), 0.56);
-  EXPECT_GE(e.pairs.mainRecall(), 0.86);
-  EXPECT_GT(e.pose.pairs, 0u);
-  EXPECT_LE(e.pose.median_translation_m, 0.01);
-  EXPECT_LE(e.pose.median_rotation_deg, 2.0);
-  EXPECT_LT(e.growth_max, 2.0) << "no model grows into a ball of merged shapes";
-  const fs::path out(options.out_dir);
-  const std::string report_json = test::readText(out / "report.json");
-  EXPECT_NE(report_json.find("\"objects\": {\"models\": "), std::string::npos);
-  EXPECT_TRUE(fs::exists(out / "objects.json"));
-  EXPECT_TRUE(fs::exists(out / "objects.sodb"));
-  EXPECT_TRUE(fs::exists(out / "objects.png"));
+  test::expectRoomObjectTargets(report, options.out_dir, kThreeSessionPairs, 0.56, 0.65);
   fs::remove_all(options.out_dir);
 }
 

@@ -17,10 +17,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-void writeText(const std::string& path, const std::string& text) {
-  writeFileAtomically(path, std::vector<std::uint8_t>(text.begin(), text.end()));
-}
-
 std::string poseJson(const Eigen::Isometry3d& T) {
   const Eigen::Quaterniond q(T.linear());
   const Eigen::Vector3d t = T.translation();
@@ -93,7 +89,7 @@ std::vector<std::string> writeAlignedTrajectories(const align::StoreAlignment& a
     for (std::size_t i = 0; i < r.frame_T_W_C.size(); ++i)
       o << r.frame_timestamps_s[i] << " " << tum::poseToTum(r.frame_T_W_C[i]) << "\n";
     files.push_back((dir / "trajectory.txt").string());
-    writeText(files.back(), o.str());
+    writeTextAtomically(files.back(), o.str());
   }
   return files;
 }
@@ -122,7 +118,7 @@ void writeLoopsCsv(const align::StoreAlignment& a, const align::AlignmentScore* 
     }
     o << "\n";
   }
-  writeText(path, o.str());
+  writeTextAtomically(path, o.str());
 }
 
 void writeAlignReport(const align::StoreAlignment& a, const align::AlignmentScore* score,
@@ -150,7 +146,7 @@ void writeAlignReport(const align::StoreAlignment& a, const align::AlignmentScor
     << ", \"final_cost\": " << jsonNumber(r.graph.final_cost)
     << ", \"solve_s\": " << jsonNumber(r.graph.solve_seconds) << "},\n  \"truth\": "
     << (score ? align::alignmentScoreJson(*score) : "null") << "\n}\n";
-  writeText(path, o.str());
+  writeTextAtomically(path, o.str());
 }
 
 std::optional<std::vector<align::SessionTruth>> loadAlignTruth(const align::StoreAlignment& a) {

@@ -14,10 +14,6 @@
 namespace strata::apps {
 namespace {
 
-void writeText(const std::string& path, const std::string& text) {
-  writeFileAtomically(path, std::vector<std::uint8_t>(text.begin(), text.end()));
-}
-
 std::string optionalNumber(const std::optional<double>& value) {
   return value ? jsonNumber(*value) : std::string("null");
 }
@@ -87,7 +83,7 @@ void writeExploreCurveCsv(const std::string& path, const explore::ExplorationRes
                   p.path_length_m, p.compute_ms);
     s << row;
   }
-  writeText(path, s.str());
+  writeTextAtomically(path, s.str());
 }
 
 void writeExploreStepsCsv(const std::string& path, const explore::ExplorationResult& result) {
@@ -100,7 +96,7 @@ void writeExploreStepsCsv(const std::string& path, const explore::ExplorationRes
                   r.gain_evaluations, r.compute_ms, r.esdf_ms);
     s << row;
   }
-  writeText(path, s.str());
+  writeTextAtomically(path, s.str());
 }
 
 StepTimes stepTimes(const explore::ExplorationResult& result) {
@@ -131,7 +127,7 @@ void writeExploreReport(const std::string& path, const std::string& world,
       << runJson(results[i], dead_end ? deadEndJson(results[i], *dead_end) : "");
   }
   j << "\n  }\n}\n";
-  writeText(path, j.str());
+  writeTextAtomically(path, j.str());
 }
 
 }  // namespace strata::apps

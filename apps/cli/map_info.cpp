@@ -3,6 +3,7 @@
 #include <cstdarg>
 #include <cstdio>
 
+#include "core/json_text.h"
 #include "store/schema.h"
 
 namespace strata::apps {
@@ -17,21 +18,6 @@ std::string format(const char* fmt, ...) {
   std::vsnprintf(text, sizeof(text), fmt, args);
   va_end(args);
   return text;
-}
-
-std::string jsonString(const std::string& s) {
-  std::string out = "\"";
-  for (const char c : s) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      out += format("\\u%04x", static_cast<unsigned>(c));
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
 }
 
 const char* problemName(store::ResourceProblem::Kind kind) {
@@ -83,13 +69,13 @@ std::string mapInfoJson(const std::string& db_path,
                         const std::vector<store::SessionSummary>& sessions,
                         const std::vector<store::ResourceProblem>& problems, bool verified) {
   std::string out =
-      "{\n  \"database\": " + jsonString(db_path) +
+      "{\n  \"database\": " + jsonQuoted(db_path) +
       format(",\n  \"schema_version\": %d,\n  \"sessions\": [", store::kSchemaVersion);
   for (std::size_t i = 0; i < sessions.size(); ++i) {
     const auto& s = sessions[i];
     out += std::string(i == 0 ? "\n" : ",\n") + "    {\"id\": " + std::to_string(s.session.id) +
-           ", \"name\": " + jsonString(s.session.name) +
-           ", \"source_folder\": " + jsonString(s.session.source_folder) +
+           ", \"name\": " + jsonQuoted(s.session.name) +
+           ", \"source_folder\": " + jsonQuoted(s.session.source_folder) +
            format(
                ", \"aligned\": %s, \"keyframes\": %zu, \"optimised_keyframes\": %zu, "
                "\"odometry_edges\": %zu, \"loop_edges\": %zu, \"prior_edges\": %zu, "
@@ -106,7 +92,7 @@ std::string mapInfoJson(const std::string& db_path,
     for (std::size_t i = 0; i < problems.size(); ++i) {
       out += std::string(i == 0 ? "\n" : ",\n") +
              "    {\"resource\": " + std::to_string(problems[i].resource.id) + ", \"kind\": \"" +
-             problemName(problems[i].kind) + "\", \"message\": " + jsonString(problems[i].message) +
+             problemName(problems[i].kind) + "\", \"message\": " + jsonQuoted(problems[i].message) +
              "}";
     }
     out += problems.empty() ? "]" : "\n  ]";

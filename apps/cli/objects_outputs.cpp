@@ -38,10 +38,6 @@ Mesh concatenate(Mesh a, const Mesh& b) {
   return a;
 }
 
-void writeText(const std::string& path, const std::string& text) {
-  writeFileAtomically(path, std::vector<std::uint8_t>(text.begin(), text.end()));
-}
-
 }  // namespace
 
 ObjectsRun buildObjectDatabase(const DiffResult& result, const std::vector<TsdfMap>& maps,
@@ -83,7 +79,7 @@ ObjectsFiles writeObjectsFiles(const ObjectsRun& run, const DiffResult& result,
   json << "{\n  \"command\": \"objects\",\n" << objectsJsonMembers(run, files, 2);
   if (!truth_json.empty()) json << ",\n  \"truth\": " << truth_json;
   json << "\n}\n";
-  writeText(files.json, json.str());
+  writeTextAtomically(files.json, json.str());
   return files;
 }
 

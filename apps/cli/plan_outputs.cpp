@@ -12,10 +12,6 @@
 namespace strata::apps {
 namespace {
 
-void writeText(const std::string& path, const std::string& text) {
-  writeFileAtomically(path, std::vector<std::uint8_t>(text.begin(), text.end()));
-}
-
 std::string point(const Eigen::Vector3f& p) {
   return "[" + jsonNumber(p.x()) + ", " + jsonNumber(p.y()) + ", " + jsonNumber(p.z()) + "]";
 }
@@ -43,7 +39,7 @@ void writePathCsv(const std::string& path, const std::vector<Eigen::Vector3f>& p
                   static_cast<double>(p.y()), static_cast<double>(p.z()));
     out << line;
   }
-  writeText(path, out.str());
+  writeTextAtomically(path, out.str());
 }
 
 void writePlanReport(const std::string& path, const PlanReport& r) {
@@ -62,7 +58,7 @@ void writePlanReport(const std::string& path, const PlanReport& r) {
       << ",\n  \"radius_m\": " << jsonNumber(r.request.radius_m) << ",\n  \"unknown\": "
       << (r.request.unknown == UnknownPolicy::kOccupied ? "\"occupied\"" : "\"free\"")
       << ",\n  \"waypoints\": " << r.result.path_W.size() << "\n}\n";
-  writeText(path, out.str());
+  writeTextAtomically(path, out.str());
 }
 
 void writePathPng(const std::string& path, const EsdfMap& esdf, const PlanReport& r) {

@@ -22,7 +22,7 @@ using plan::VoxelBox;
 constexpr int kMinMapPx = 640;
 constexpr int kTitlePx = 28;
 
-std::string point(const Eigen::Vector3f& p) {
+std::string pointJson(const Eigen::Vector3f& p) {
   return "[" + jsonNumber(p.x()) + ", " + jsonNumber(p.y()) + ", " + jsonNumber(p.z()) + "]";
 }
 
@@ -78,16 +78,16 @@ void writeTopoJson(const std::string& path, const TopoMap& topo) {
   for (std::size_t c = 0; c < topo.clusters().size(); ++c) {
     const VoxelBox& b = topo.clusters()[c];
     out << (c ? ",\n" : "\n") << "    {\"id\": " << c
-        << ", \"min_m\": " << point(corner(b.lo, voxel_m))
-        << ", \"max_m\": " << point(corner(b.hi + Eigen::Vector3i::Ones(), voxel_m))
+        << ", \"min_m\": " << pointJson(corner(b.lo, voxel_m))
+        << ", \"max_m\": " << pointJson(corner(b.hi + Eigen::Vector3i::Ones(), voxel_m))
         << ", \"voxels\": " << b.volume() << "}";
   }
   out << "\n  ],\n  \"portals\": [";
   for (std::size_t i = 0; i < topo.portals().size(); ++i) {
     const TopoPortal& p = topo.portals()[i];
     out << (i ? ",\n" : "\n") << "    {\"id\": " << i << ", \"clusters\": [" << p.a << ", " << p.b
-        << "], \"axis\": " << p.axis << ", \"min_m\": " << point(p.lo_W)
-        << ", \"max_m\": " << point(p.hi_W) << "}";
+        << "], \"axis\": " << p.axis << ", \"min_m\": " << pointJson(p.lo_W)
+        << ", \"max_m\": " << pointJson(p.hi_W) << "}";
   }
   out << "\n  ],\n  \"edges\": [";
   bool first = true;

@@ -7,19 +7,14 @@
 #include "core/error.h"
 #include "lcm/convert_stereo.h"
 #include "lcm/lcm_time.h"
+#include "player/internal/publish.h"
 
 namespace strata::apps {
 namespace {
 
 using Clock = std::chrono::steady_clock;
 
-template <typename Message>
-std::size_t publishOrThrow(lcm::LCM& lcm, const std::string& channel, const Message& message) {
-  if (lcm.publish(channel, &message) != 0) {
-    throw InputError("LCM could not publish on " + channel + " (" + Message::getTypeName() + ")");
-  }
-  return static_cast<std::size_t>(message.getEncodedSize());
-}
+using internal::publishOrThrow;
 
 /// Events to send: the picked frames and the IMU samples within their span (all when all frames).
 std::vector<euroc::Event> pickEvents(const euroc::EurocDataset& d, const PlayOptions& o) {

@@ -5,18 +5,14 @@
 #include "lcm/convert_pose.h"
 #include "lcm/lcm_time.h"
 #include "strata/imu_t.hpp"
+#include "player/internal/publish.h"
 
 namespace strata::apps {
 namespace {
 
 constexpr std::int64_t kCameraInfoPeriodUs = 1000000;
 
-template <typename Message>
-void publishOrThrow(lcm::LCM& lcm, const std::string& channel, const Message& message) {
-  if (lcm.publish(channel, &message) != 0) {
-    throw InputError("LCM could not publish on " + channel + " (" + Message::getTypeName() + ")");
-  }
-}
+using internal::publishOrThrow;
 
 }  // namespace
 

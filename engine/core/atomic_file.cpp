@@ -187,6 +187,10 @@ void writeFileAtomically(const std::string& path, const std::vector<std::uint8_t
   syncFolder(std::filesystem::path(path), path);
 }
 
+void writeTextAtomically(const std::string& path, const std::string& text) {
+  writeFileAtomically(path, std::vector<std::uint8_t>(text.begin(), text.end()));
+}
+
 std::vector<std::uint8_t> readFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError("cannot open '" + path + "': " + systemReason());

@@ -20,6 +20,9 @@ void writeFileAtomically(const std::string& path, const std::vector<std::uint8_t
 /// Reads a whole file; InputError naming the path when it cannot.
 std::vector<std::uint8_t> readFile(const std::string& path);
 
+/// writeFileAtomically for text (the bytes of `text` as they are).
+void writeTextAtomically(const std::string& path, const std::string& text);
+
 /// CRC-32 (IEEE 802.3 polynomial, reflected), as used by zip and PNG.
 std::uint32_t crc32(const std::uint8_t* data, std::size_t size, std::uint32_t crc = 0);
 

@@ -6,11 +6,12 @@
 
 #include "map/device_layout.h"
 #include "esdf/internal/esdf_impl.h"
+#include "vk/dispatch_size.h"
 
 namespace strata {
 namespace {
 
-constexpr std::uint32_t kMaxGroupsPerDimension = 65535;
+using vk::kMaxGroupsPerDimension;
 constexpr std::uint32_t kEdtLinesPerGroup = 64;     // esdf_edt_pass.comp local_size_x
 constexpr std::uint32_t kNoSiteFill = 0xFFFFFFFFu;  // kEsdfNoSite in esdf_layout.glsl
 

@@ -5,12 +5,12 @@
 #include "core/error.h"
 #include "map/device_layout.h"
 #include "esdf/internal/esdf_impl.h"
+#include "vk/dispatch_size.h"
 
 namespace strata {
 namespace {
 
-constexpr std::uint32_t kMaxGroupsPerDimension = 65535;
-constexpr std::uint64_t kEsdfBlockBytes = sizeof(EsdfBlock);
+using vk::kMaxGroupsPerDimension;
 
 void ensureSlotKeys(vk::Context& context, std::uint32_t blocks, EsdfDeviceState& impl) {
   if (blocks <= impl.slot_keys_capacity) return;

@@ -6,6 +6,7 @@
 #include "map/device_layout.h"
 #include "map/device_tsdf_map.h"
 #include "vk/timed_dispatch.h"
+#include "vk/dispatch_size.h"
 
 namespace strata {
 namespace {
@@ -28,8 +29,7 @@ static_assert(sizeof(EsdfQueryPush) == 48 && offsetof(EsdfQueryPush, hash_mask) 
               "EsdfQueryPush layout");
 
 constexpr std::uint32_t kWorkgroupSize = 128;            // local_size_x of the shader
-constexpr std::uint32_t kMaxGroupsPerDimension = 65535;  // Vulkan's guaranteed minimum
-constexpr std::uint64_t kEsdfBlockBytes = sizeof(EsdfBlock);
+using vk::kMaxGroupsPerDimension;
 static_assert(kEsdfBlockBytes == 4096, "ESDF block stride in the shader");
 // Non-finite points are sent as this: beyond the block range, so the shader reads them kOutside.
 constexpr float kFarSentinel = 1e30f;

@@ -8,6 +8,7 @@
 #include "explore/internal/view_gain_rays.h"
 #include "explore/view_gain.h"
 #include "map/device_tsdf_map.h"
+#include "vk/dispatch_size.h"
 
 namespace strata::explore {
 namespace {
@@ -43,7 +44,7 @@ struct BlockTablePush {
 static_assert(sizeof(BlockTablePush) == 32, "BlockTablePush layout");
 
 constexpr std::uint32_t kWorkgroupSize = 64;             // local_size_x of both shaders
-constexpr std::uint32_t kMaxGroupsPerDimension = 65535;  // Vulkan's guaranteed minimum
+using vk::kMaxGroupsPerDimension;
 // A batch whose block box would exceed this goes in several chunks (16 MiB of table).
 constexpr std::int64_t kMaxTableBlocks = std::int64_t{1} << 22;
 

@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "integrate/block_allocation.h"
+#include "vk/dispatch_size.h"
 
 namespace strata {
 namespace {
@@ -16,7 +17,7 @@ constexpr std::uint32_t kMinTouchedCapacity = 4096;
 constexpr std::uint32_t kMinReserveBlocks = 4096;
 constexpr VkDeviceSize kGatherArgsOffset = 16;  // integrate_args.comp: args[4..6]
 
-std::uint32_t divideUp(std::uint32_t a, std::uint32_t b) { return (a + b - 1) / b; }
+using vk::divideUp;
 
 /// The camera fields every pass's push constants share (K, image size, depth range).
 template <typename Push>

@@ -10,13 +10,6 @@
 namespace strata {
 namespace {
 
-constexpr std::uint64_t kBlockBytes = sizeof(TsdfBlock);
-constexpr std::uint64_t kLabelBlockBytes = kVoxelsPerBlock * DeviceTsdfMap::kLabelBytesPerVoxel;
-
-}  // namespace
-
-namespace {
-
 void fillZero(vk::Context& context, vk::Buffer& layer) {
   vk::CommandBuffer cmd = vk::CommandBuffer::create(context);
   cmd.begin();

@@ -11,8 +11,6 @@
 namespace strata {
 namespace {
 
-constexpr std::uint64_t kBlockBytes = sizeof(TsdfBlock);
-constexpr std::uint64_t kLabelBlockBytes = kVoxelsPerBlock * DeviceTsdfMap::kLabelBytesPerVoxel;
 // One binding sees at most 128 MiB on lavapipe; 2^23 entries of 16 bytes is exactly that.
 constexpr std::uint32_t kMaxHashCapacity = 1u << 23;
 constexpr std::uint32_t kMaxProbes = 128;  // matches kMaxHashProbes in map_layout.glsl

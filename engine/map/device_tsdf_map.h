@@ -36,6 +36,9 @@ class DeviceTsdfMap {
   static constexpr std::uint32_t kBytesPerVoxel = sizeof(TsdfVoxel);
   /// Bytes per voxel of a label layer.
   static constexpr std::uint32_t kLabelBytesPerVoxel = sizeof(std::uint32_t);
+  /// Bytes per block of a TSDF layer and of a label layer (a slot's stride in each pool).
+  static constexpr std::uint64_t kBlockBytes = sizeof(TsdfBlock);
+  static constexpr std::uint64_t kLabelBlockBytes = std::uint64_t{kVoxelsPerBlock} * kLabelBytesPerVoxel;
 
   vk::Buffer& hashEntries() { return entries_; }
   vk::Buffer& counters() { return counters_; }

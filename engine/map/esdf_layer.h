@@ -60,6 +60,8 @@ inline Eigen::Vector3i unpackSiteOffset(std::uint32_t packed) {
 }
 
 using EsdfBlock = std::array<EsdfVoxel, kVoxelsPerBlock>;
+/// Bytes per ESDF block (a slot's stride in the device's ESDF pool).
+inline constexpr std::uint64_t kEsdfBlockBytes = sizeof(EsdfBlock);
 
 /// Host copy of the ESDF layer (downloaded from the device, or computed by the reference).
 struct EsdfMap {

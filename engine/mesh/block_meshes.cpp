@@ -14,7 +14,7 @@ namespace {
 using detail::BlockMeshPart;
 
 // Blocks per claimed chunk: enough to amortise a chunk's cache, few enough to balance.
-constexpr std::size_t kBlocksPerChunk = 64;
+constexpr std::size_t kMeshBlocksPerChunk = 64;
 
 /// Meshes each block once per update, also the + neighbours whose vertices others borrow.
 class PartCache {
@@ -114,7 +114,7 @@ std::vector<BlockMesh> meshBlocks(const TsdfMap& map, const std::vector<BlockInd
   // Blocks are independent: chunks on options.num_threads threads, each with its own cache (a +
   // neighbour on a chunk border is meshed twice; the output does not depend on the split).
   detail::parallelForChunks(blocks.size(), detail::resolveThreadCount(options.num_threads),
-                            kBlocksPerChunk, [&](std::size_t begin, std::size_t end) {
+                            kMeshBlocksPerChunk, [&](std::size_t begin, std::size_t end) {
                               PartCache cache(map, options);
                               for (std::size_t i = begin; i < end; ++i) {
                                 out[i] = meshOne(blocks[i], cache);

@@ -20,7 +20,7 @@ namespace {
 using detail::BlockMeshPart;
 
 // Blocks per claimed chunk: large enough to amortise the atomic, small enough to balance.
-constexpr std::size_t kBlocksPerChunk = 32;
+constexpr std::size_t kPartsPerChunk = 32;
 
 struct PartLayout {
   std::vector<BlockIndex> blocks;  // sorted
@@ -78,7 +78,7 @@ Mesh assemble(const PartLayout& layout, bool with_normals, int threads) {
   mesh.colors.resize(vertex_count);
   if (with_normals) mesh.normals.resize(vertex_count);
   mesh.triangles.resize(layout.triangle_offset.back());
-  detail::parallelForChunks(layout.parts.size(), threads, kBlocksPerChunk,
+  detail::parallelForChunks(layout.parts.size(), threads, kPartsPerChunk,
                             [&](std::size_t begin, std::size_t end) {
                               for (std::size_t i = begin; i < end; ++i) copyPart(layout, i, mesh);
                             });
@@ -108,7 +108,7 @@ Mesh extractMesh(const TsdfMap& map, const MeshOptions& options) {
   for (std::size_t i = 0; i < layout.blocks.size(); ++i) layout.position[layout.blocks[i]] = i;
 
   layout.parts.resize(layout.blocks.size());
-  detail::parallelForChunks(layout.blocks.size(), threads, kBlocksPerChunk,
+  detail::parallelForChunks(layout.blocks.size(), threads, kPartsPerChunk,
                             [&](std::size_t begin, std::size_t end) {
                               detail::BlockMesher mesher(map, options);
                               for (std::size_t i = begin; i < end; ++i) {

@@ -7,13 +7,14 @@
 #include <vector>
 
 #include "core/error.h"
+#include "vk/dispatch_size.h"
 
 namespace strata {
 namespace {
 
 constexpr std::uint32_t kRayGroupEdge = 16;  // occupancy_allocate / occupancy_mark: 16 x 16
 
-std::uint32_t divideUp(std::uint32_t a, std::uint32_t b) { return (a + b - 1) / b; }
+using vk::divideUp;
 
 OccupancyConfig validated(const OccupancyConfig& config) {
   config.validate();

@@ -4,13 +4,14 @@
 #include <cstring>
 
 #include "occupancy/occupancy_device.h"
+#include "vk/dispatch_size.h"
 
 namespace strata {
 namespace {
 
-constexpr std::uint32_t kMaxGroupsPerDimension = 65535;
+using vk::kMaxGroupsPerDimension;
 
-std::uint32_t divideUp(std::uint32_t a, std::uint32_t b) { return (a + b - 1) / b; }
+using vk::divideUp;
 
 }  // namespace
 

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <random>
+#include "core/math_constants.h"
 
 namespace strata::align {
 namespace {
@@ -9,7 +10,6 @@ namespace {
 using Eigen::Isometry3d;
 using Eigen::Vector3d;
 
-constexpr double kPi = 3.14159265358979323846;
 
 /// Camera looking along the circle's tangent (z forward, y down), with a little roll, pitch and
 /// height change so the graph is not planar.

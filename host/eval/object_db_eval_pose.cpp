@@ -3,11 +3,11 @@
 #include <cmath>
 
 #include "eval/object_db_eval_models.h"
+#include "core/math_constants.h"
 
 namespace strata::eval {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 double angleFromTrace(double trace) {
   return std::acos(std::clamp((trace - 1.0) / 2.0, -1.0, 1.0)) * 180.0 / kPi;

@@ -4,12 +4,12 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include "core/math_constants.h"
 
 namespace strata::objects {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 /// Hypotheses closer than this (rotation, translation in voxels) are one.
 constexpr double kDistinctAngleDeg = 10.0;
 constexpr float kDistinctTranslationVoxels = 2.0f;

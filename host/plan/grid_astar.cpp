@@ -10,15 +10,13 @@
 #include <queue>
 
 #include "plan/path_prune.h"
+#include "plan/internal/elapsed.h"
 
 namespace strata::plan {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double msSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
+using internal::Clock;
+using internal::msSince;
 
 /// One of the 26 moves: its offset, its length in voxels, and the offsets (relative to the cell
 /// moved from) that must be traversable for it: the other corners of the unit cube it crosses.

@@ -9,15 +9,13 @@
 
 #include "plan/topo_boxes.h"
 #include "plan/topo_links.h"
+#include "plan/internal/elapsed.h"
 
 namespace strata::plan {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double msSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
+using internal::Clock;
+using internal::msSince;
 
 bool sameBox(const VoxelBox& a, const VoxelBox& b) { return a.lo == b.lo && a.hi == b.hi; }
 

@@ -8,15 +8,13 @@
 #include <limits>
 
 #include "plan/grid_astar.h"
+#include "plan/internal/elapsed.h"
 
 namespace strata::plan {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double msSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
+using internal::Clock;
+using internal::msSince;
 
 /// The point of the portal's plane on the straight line from `prev` to `next` (with `next`
 /// mirrored to the far side when both lie on one side), clamped to the portal's rectangle.

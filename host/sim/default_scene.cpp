@@ -4,11 +4,11 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/math_constants.h"
 
 namespace strata::sim {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kWallHeight_m = 2.5;
 constexpr double kWallThickness_m = 0.2;
 constexpr double kCameraHeight_m = 1.4;

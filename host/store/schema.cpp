@@ -10,7 +10,7 @@ namespace strata::store {
 namespace {
 
 /// The seven columns of one pose: translation (metres) and unit quaternion (x, y, z, w).
-std::string poseColumns(const std::string& prefix, bool nullable) {
+std::string poseColumnDefinitions(const std::string& prefix, bool nullable) {
   std::string out;
   for (const char* c : {"tx", "ty", "tz", "qx", "qy", "qz", "qw"}) {
     out += "  " + prefix + "_" + c + (nullable ? " REAL,\n" : " REAL NOT NULL,\n");
@@ -34,14 +34,14 @@ std::string schemaV1() {
          "  name TEXT NOT NULL,\n"
          "  source_folder TEXT NOT NULL UNIQUE,\n"
          "  created_unix_s REAL NOT NULL,\n" +
-         poseColumns("T_W_S", true) +
+         poseColumnDefinitions("T_W_S", true) +
          "  aligned INTEGER NOT NULL DEFAULT 0 CHECK (aligned IN (0, 1)),\n" + allOrNone("T_W_S") +
          ",\n  CHECK (aligned = 0 OR T_W_S_tx IS NOT NULL));\n"
          "CREATE TABLE keyframes (\n"
          "  id INTEGER PRIMARY KEY,\n"
          "  session_id INTEGER NOT NULL REFERENCES sessions(id) ON DELETE CASCADE,\n"
          "  timestamp_s REAL NOT NULL,\n" +
-         poseColumns("T_S_C", false) + poseColumns("T_W_C", true) +
+         poseColumnDefinitions("T_S_C", false) + poseColumnDefinitions("T_W_C", true) +
          "  covariance BLOB CHECK (covariance IS NULL OR length(covariance) = 288),\n" +
          allOrNone("T_W_C") +
          ");\n"
@@ -51,7 +51,7 @@ std::string schemaV1() {
          "  kind TEXT NOT NULL CHECK (kind IN ('odometry', 'loop', 'prior')),\n"
          "  from_keyframe INTEGER NOT NULL REFERENCES keyframes(id) ON DELETE CASCADE,\n"
          "  to_keyframe INTEGER REFERENCES keyframes(id) ON DELETE CASCADE,\n" +
-         poseColumns("T_from_to", false) +
+         poseColumnDefinitions("T_from_to", false) +
          "  information BLOB NOT NULL CHECK (length(information) = 288),\n"
          "  loop_inliers INTEGER,\n"
          "  loop_inlier_ratio REAL,\n"

@@ -5,10 +5,11 @@
 
 #include "change/change_device.h"
 #include "change/change_layout.h"
+#include "vk/dispatch_size.h"
 
 namespace strata::change {
 
-inline constexpr std::uint32_t kMaxGroupsPerDimension = 65535;
+using vk::kMaxGroupsPerDimension;
 inline constexpr std::uint32_t kNeighbours = 27;
 inline constexpr std::uint32_t kRowsPerBlock = 64;  // dynamic row masks (change_rows.glsl)
 inline constexpr std::uint32_t kBlocksPerMorphGroup = 4;
@@ -27,7 +28,7 @@ enum Stamp : std::uint32_t {
   kStamps
 };
 
-inline std::uint64_t divideUp(std::uint64_t a, std::uint64_t b) { return (a + b - 1) / b; }
+using vk::divideUp;
 
 inline void dispatchLinear(vk::CommandBuffer& cmd, std::uint64_t groups) {
   const auto x =

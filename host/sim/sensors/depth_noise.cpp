@@ -5,11 +5,11 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/math_constants.h"
 
 namespace strata::sim {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kDegToRad = kPi / 180.0;
 constexpr double kMaxAngleTermRad = 85.0 * kDegToRad;  // NOTE: theta^2 / (pi/2 - theta)^2 -> inf
 

@@ -4,11 +4,11 @@
 
 #include "core/error.h"
 #include "sim/rng.h"
+#include "core/math_constants.h"
 
 namespace strata::sim {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 }  // namespace
 

@@ -24,7 +24,7 @@ Eigen::Matrix3d skew(const Eigen::Vector3d& w) {
 
 Eigen::Vector3d gaussian3(Rng& rng) { return {rng.normal(), rng.normal(), rng.normal()}; }
 
-void requireNonNegative(double value, const char* field) {
+void requireImuNonNegative(double value, const char* field) {
   if (!(value >= 0.0) || !std::isfinite(value)) {
     throw InputError(std::string("ImuConfig: ") + field + " must be finite and >= 0");
   }
@@ -36,11 +36,11 @@ void ImuConfig::validate() const {
   if (!(rate_hz > 0.0) || !std::isfinite(rate_hz)) {
     throw InputError("ImuConfig: rate_hz must be positive and finite");
   }
-  requireNonNegative(gyro_noise_density, "gyro_noise_density");
-  requireNonNegative(gyro_random_walk, "gyro_random_walk");
-  requireNonNegative(accel_noise_density, "accel_noise_density");
-  requireNonNegative(accel_random_walk, "accel_random_walk");
-  requireNonNegative(gravity_mps2, "gravity_mps2");
+  requireImuNonNegative(gyro_noise_density, "gyro_noise_density");
+  requireImuNonNegative(gyro_random_walk, "gyro_random_walk");
+  requireImuNonNegative(accel_noise_density, "accel_noise_density");
+  requireImuNonNegative(accel_random_walk, "accel_random_walk");
+  requireImuNonNegative(gravity_mps2, "gravity_mps2");
   if (!initial_gyro_bias.allFinite() || !initial_accel_bias.allFinite()) {
     throw InputError("ImuConfig: initial biases must be finite");
   }

@@ -11,7 +11,7 @@ namespace {
 // Sub-stream of the seed for the frame ("OFRM"), apart from the drift's draws.
 constexpr std::uint64_t kFrameStream = 0x4f46524dull;
 
-void requireNonNegative(double value, const char* field) {
+void requireFrameNonNegative(double value, const char* field) {
   if (!(value >= 0.0) || !std::isfinite(value)) {
     throw InputError(std::string("OdometryFrameConfig: ") + field + " must be finite and >= 0");
   }
@@ -20,8 +20,8 @@ void requireNonNegative(double value, const char* field) {
 }  // namespace
 
 void OdometryFrameConfig::validate() const {
-  requireNonNegative(horizontal_offset_m, "horizontal_offset_m");
-  requireNonNegative(vertical_offset_m, "vertical_offset_m");
+  requireFrameNonNegative(horizontal_offset_m, "horizontal_offset_m");
+  requireFrameNonNegative(vertical_offset_m, "vertical_offset_m");
 }
 
 Eigen::Isometry3d randomOdometryFrame(const OdometryFrameConfig& config, std::uint64_t seed) {

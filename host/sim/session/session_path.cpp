@@ -8,11 +8,11 @@
 #include "core/error.h"
 #include "sim/rng.h"
 #include "sim/session/free_space_grid.h"
+#include "core/math_constants.h"
 
 namespace strata::sim {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kLookAtHeight_m = 0.6;  // objects stand on the floor: look slightly down
 
 Eigen::Vector2d centre(const RoomSpec& room) { return 0.5 * (room.min_m + room.max_m); }

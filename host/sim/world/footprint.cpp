@@ -2,11 +2,11 @@
 
 #include <array>
 #include <cmath>
+#include "core/math_constants.h"
 
 namespace strata::sim {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 std::array<Eigen::Vector2d, 2> axes(const Footprint& f) {
   const double c = std::cos(f.yaw_rad), s = std::sin(f.yaw_rad);

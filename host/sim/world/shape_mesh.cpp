@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include "core/math_constants.h"
 
 namespace strata::sim {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 using V3 = Eigen::Vector3d;
 

@@ -4,12 +4,12 @@
 
 #include "sim/rng.h"
 #include "sim/world/shape_mesh.h"
+#include "core/math_constants.h"
 
 namespace strata::sim {
 namespace {
 
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr std::uint64_t kLightStream = 0x4C49474854ull;  // "LIGHT": apart from the layout streams
 
 Change compare(const Placement& reference, const Placement& now) {
