@@ -11,7 +11,7 @@
 namespace strata::bench {
 namespace {
 
-Json notes() {
+Json diffNotes() {
   return Json::array()
       .push(
           "device times come from Vulkan timestamp queries around each stage of "
@@ -52,7 +52,7 @@ Json settingsJson(const DiffBenchOptions& o, const DiffRunSettings& s) {
                .set("dilation_kernel_voxels", c.dilation_kernel_voxels)
                .set("merge_close_m", static_cast<double>(c.merge_close_m)))
       .set("reference", s.reference)
-      .set("notes", notes());
+      .set("notes", diffNotes());
 }
 
 DiffRunSettings makeSettings(const DiffBenchOptions& o) {

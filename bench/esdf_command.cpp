@@ -11,6 +11,7 @@
 #include "machine_info.h"
 #include "sim/session/sim_session.h"
 #include "sim/world/world_paths.h"
+#include "bench_timing.h"
 
 namespace strata::bench {
 namespace {
@@ -18,10 +19,6 @@ namespace {
 // The ESDF's bar: voxblox's incremental ESDF takes about 56 ms per update at 5 cm voxels on a 4-core
 // laptop CPU, and it is quasi-Euclidean (the figure as the issue quotes it; not re-measured here).
 constexpr double kVoxbloxIncrementalMs5cm = 56.0;
-
-std::string defaultDataDir() {
-  return std::filesystem::path(STRATA_SHARED_DATA_DIR "/redkitchen").lexically_normal().string();
-}
 
 Json voxbloxJson() {
   return Json::object()
@@ -32,7 +29,7 @@ Json voxbloxJson() {
       .set("source", "the published figure (voxblox's published incremental ESDF time)");
 }
 
-Json notes() {
+Json esdfNotes() {
   return Json::array()
       .push(
           "device times come from Vulkan timestamp queries (EsdfUpdateStats::device_ms); wall "
@@ -62,7 +59,7 @@ Json settingsJson(const EsdfBenchOptions& o, const EsdfBenchSettings& s) {
       .set("esdf_max_distance_m", static_cast<double>(s.esdf.max_distance_m))
       .set("esdf_site_threshold_voxels", static_cast<double>(s.esdf.site_threshold_voxels))
       .set("full_runs", s.full_runs)
-      .set("notes", notes());
+      .set("notes", esdfNotes());
 }
 
 /// The simulated room's first session, rendered on demand (rendering time is not measured).
@@ -72,7 +69,7 @@ std::unique_ptr<sim::SimSessionDataset> roomSession(const std::string& world) {
 }
 
 int runChecked(EsdfBenchOptions o) {
-  if (o.data_dir.empty()) o.data_dir = defaultDataDir();
+  if (o.data_dir.empty()) o.data_dir = redkitchenDataDir();
   if (o.frames <= static_cast<int>(kWarmupFrames)) {
     throw InputError("--frames must exceed the " + std::to_string(kWarmupFrames) +
                      " warm-up frames");
@@ -112,7 +109,7 @@ int runChecked(EsdfBenchOptions o) {
 
 CLI::App* addEsdfCommand(CLI::App& app, EsdfBenchOptions& o) {
   CLI::App* esdf = app.add_subcommand("esdf", "ESDF update and query times (5 cm)");
-  o.data_dir = defaultDataDir();
+  o.data_dir = redkitchenDataDir();
   esdf->add_option("--data", o.data_dir, "TUM RGB-D or 7-Scenes folder")->capture_default_str();
   esdf->add_option("--world", o.world, "Simulated world (name or YAML)")->capture_default_str();
   esdf->add_option("--frames", o.frames, "Frames fused per input")->capture_default_str();

@@ -10,18 +10,14 @@
 #include "esdf_runs.h"
 #include "esdf/esdf_query.h"
 #include "esdf/esdf_query_kernel.h"
+#include "bench_timing.h"
 
 namespace strata::bench {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 constexpr std::uint32_t kSeed = 20261122;  // fixed: runs compare
 constexpr float kSegmentLengthM = 0.5f;
 constexpr std::size_t kSegmentsPerPoint = 10;  // one segment per 10 points
-
-double msSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 /// Half jittered around observed voxels (where planners ask), half uniform in the blocks' box.
 std::vector<Eigen::Vector3f> queryPoints(const EsdfMap& map, std::size_t count) {

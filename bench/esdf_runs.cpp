@@ -8,16 +8,12 @@
 #include "fuse_runs.h"  // kWarmupFrames
 #include "integrate/device_fusion.h"
 #include "summary.h"
+#include "bench_timing.h"
 
 namespace strata::bench {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 constexpr std::size_t kProgressEvery = 25;  // frames between progress lines
-
-double msSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 std::size_t knownVoxels(const EsdfMap& map) {
   std::size_t known = 0;

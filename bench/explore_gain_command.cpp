@@ -27,19 +27,19 @@ constexpr std::uint32_t kPositionSeed = 17;
 constexpr float kMinHeight_m = 0.8f, kMaxHeight_m = 1.8f;
 constexpr float kClearance_m = 0.3f;
 
-struct Scene {
+struct GainScene {
   std::unique_ptr<vk::Context> context;
   std::shared_ptr<const sim::World> world;
   std::unique_ptr<DeviceFusion> fusion;
   std::size_t frames = 0;
 };
 
-Scene makeScene(const ExploreGainBenchOptions& o) {
+GainScene makeScene(const ExploreGainBenchOptions& o) {
   if (o.map_frames < 1 || o.repeats < 1 || o.reference_positions < 1 || o.batches.empty() ||
       *std::min_element(o.batches.begin(), o.batches.end()) < 1) {
     throw InputError("--map-frames, --repeats, --reference-positions and --batches must be >= 1");
   }
-  Scene s;
+  GainScene s;
   vk::ContextOptions context_options;
   context_options.device_selector = o.device;
   s.context = vk::Context::create(context_options);
@@ -87,7 +87,7 @@ bool sameGains(const std::vector<explore::ViewGain>& a, const std::vector<explor
   return true;
 }
 
-Json runBatch(Scene& s, explore::ViewGainKernel& kernel, const std::vector<Eigen::Vector3f>& all,
+Json runBatch(GainScene& s, explore::ViewGainKernel& kernel, const std::vector<Eigen::Vector3f>& all,
               int batch, int repeats) {
   const std::vector<Eigen::Vector3f> positions(all.begin(), all.begin() + batch);
   std::vector<double> device_ms, wall_ms;
@@ -113,7 +113,7 @@ Json runBatch(Scene& s, explore::ViewGainKernel& kernel, const std::vector<Eigen
 
 int runChecked(const ExploreGainBenchOptions& o) {
   const std::string load_at_start = loadAverage();
-  Scene scene = makeScene(o);
+  GainScene scene = makeScene(o);
   const int most =
       std::max(*std::max_element(o.batches.begin(), o.batches.end()), o.reference_positions);
   const std::vector<Eigen::Vector3f> positions = freePositions(*scene.world, most);

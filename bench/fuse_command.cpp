@@ -11,13 +11,10 @@
 #include "open3d_peer.h"
 #include "preload.h"
 #include "streaming_ceiling.h"
+#include "bench_timing.h"
 
 namespace strata::bench {
 namespace {
-
-std::string defaultDataDir() {
-  return std::filesystem::path(STRATA_SHARED_DATA_DIR "/redkitchen").lexically_normal().string();
-}
 
 Json intrinsicsJson(const CameraIntrinsics& k) {
   return Json::object()
@@ -29,7 +26,7 @@ Json intrinsicsJson(const CameraIntrinsics& k) {
       .set("cy_px", k.cy_px);
 }
 
-Json notes() {
+Json fuseNotes() {
   return Json::array()
       .push(
           "device times (upload/normals/allocate/integrate) come from Vulkan timestamp "
@@ -75,7 +72,7 @@ Json settingsJson(const FuseBenchOptions& options, const PreloadedFrames& data,
       .set("intrinsics", intrinsicsJson(data.intrinsics))
       .set("map_config", "default MapConfig except voxel_size_m (see results[].map_config)")
       .set("open3d", peer != nullptr ? peer->describe() : Json(kOpen3dNotBuilt))
-      .set("notes", notes());
+      .set("notes", fuseNotes());
 }
 
 /// One voxel size: device run, reference run, Open3D peer (null: not built).
@@ -133,7 +130,7 @@ Json runVoxelSize(float voxel_size_m, const FuseBenchOptions& options, const Pre
 }
 
 int runChecked(FuseBenchOptions options) {
-  if (options.data_dir.empty()) options.data_dir = defaultDataDir();
+  if (options.data_dir.empty()) options.data_dir = redkitchenDataDir();
   if (options.voxel_sizes_m.empty()) throw InputError("--voxel-sizes is empty");
   if (options.frames < 0 || options.reference_frames < 0 || options.prefill_blocks < 0) {
     throw InputError("--frames, --reference-frames and --prefill-blocks must be >= 0");
@@ -190,7 +187,7 @@ int runChecked(FuseBenchOptions options) {
 
 CLI::App* addFuseCommand(CLI::App& app, FuseBenchOptions& o) {
   CLI::App* fuse = app.add_subcommand("fuse", "TSDF fusion throughput on real RGB-D frames");
-  o.data_dir = defaultDataDir();
+  o.data_dir = redkitchenDataDir();
   fuse->add_option("--data", o.data_dir, "TUM RGB-D or 7-Scenes folder")->capture_default_str();
   fuse->add_option("--voxel-sizes", o.voxel_sizes_m, "Voxel edges, metres, comma separated")
       ->delimiter(',')

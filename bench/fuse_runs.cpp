@@ -7,17 +7,13 @@
 #include "machine_info.h"
 #include "mesh/extract_mesh.h"
 #include "summary.h"
+#include "bench_timing.h"
 
 namespace strata::bench {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 constexpr double kBytesPerMiB = 1024.0 * 1024.0;
 constexpr std::size_t kProgressEvery = 25;  // frames between progress lines
-
-double msSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 double deviceTotalMs(const FrameStats& s) {
   return s.upload_ms + s.normals_ms + s.allocate_ms + s.integrate_ms;

@@ -12,14 +12,10 @@
 #include "objects/object_database.h"
 #include "objects_scene.h"
 #include "summary.h"
+#include "bench_timing.h"
 
 namespace strata::bench {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 constexpr int kMatchedShapes = 5;  // the queries are views of models 1..5, in every N >= 5
 

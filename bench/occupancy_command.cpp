@@ -74,7 +74,7 @@ Json comparisonJson(const std::string& scene, const eval::OccupancyTsdfCompariso
                .set("max_abs_log_odds_difference", a.max_abs_log_odds_difference));
 }
 
-Json notes() {
+Json occupancyNotes() {
   return Json::array()
       .push(
           "device times from Vulkan timestamp queries, frame 0 left out (buffers grow from "
@@ -147,7 +147,7 @@ int runChecked(const OccupancyBenchOptions& o) {
                                          .set("map_config", setup.map.describe())
                                          .set("occupancy_config", setup.occupancy.describe())
                                          .set("frames_per_scene", o.frames)
-                                         .set("notes", notes()))
+                                         .set("notes", occupancyNotes()))
                     .set("results", std::move(results))
                     .set("checks_passed", ok);
   emitReport(report, o.out_path);

@@ -14,18 +14,14 @@
 #include "plan/rrt_planner.h"
 #include "sim/session/sim_session.h"
 #include "sim/world/world_paths.h"
+#include "bench_timing.h"
 
 namespace strata::bench {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 constexpr std::uint32_t kSeed = 20261205;  // fixed: runs compare
 const std::vector<std::size_t> kBatchSizes{1, 16, 256, 4096};
 constexpr double kMinTimedMs = 200.0;  // each batch size repeats until this much host time
-
-double msSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 /// Known voxel centres where the robot's sphere is free (ESDF >= radius + a voxel, then the sphere
 /// test under kOccupied, which also keeps unknown voxels out of reach), in a fixed order.
@@ -154,7 +150,7 @@ Json rrtRow(plan::CollisionChecker& checker, const EsdfMap& map, const plan::Pla
       .set("device_ms", s.device_ms);
 }
 
-Json notes() {
+Json collisionNotes() {
   return Json::array()
       .push(
           "segments: capsules of the robot radius from free known voxel centres (ESDF >= radius), "
@@ -234,7 +230,7 @@ int runChecked(const PlanCollisionBenchOptions& o) {
                                .set("radius_m", static_cast<double>(o.radius_m))
                                .set("segment_length_m", static_cast<double>(o.segment_length_m))
                                .set("rrt_iterations", o.rrt_iterations)
-                               .set("notes", notes()))
+                               .set("notes", collisionNotes()))
           .set("map",
                Json::object().set("blocks", map.blocks.size()).set("free_centres", free.size()))
           .set("segment_batches", batches)

@@ -42,7 +42,7 @@ Json settingsJson(const PlanBenchOptions& o) {
       .set("seed", o.seed);
 }
 
-Json notes() {
+Json planNotes() {
   return Json::array()
       .push(
           "map: the world's session 0 as a TSDF of the exact signed distance (observed "
@@ -148,7 +148,7 @@ int runChecked(const PlanBenchOptions& o) {
                     .set("planners", planners)
                     .set("topo_vs_grid", targets)
                     .set("topo_update", update)
-                    .set("notes", notes());
+                    .set("notes", planNotes());
   emitReport(report, o.out_path);
   std::string chart = o.chart_path;
   if (chart.empty() && !o.out_path.empty()) {

@@ -8,15 +8,11 @@
 #include "mesh/parallel_for.h"  // header-only work sharing (std::thread)
 #include "sim/world/world.h"
 #include "sim/world/world_paths.h"
+#include "bench_timing.h"
 
 namespace strata::bench {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double msSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 TsdfBlock truthBlock(const sim::WorldScene& scene, const BlockIndex& b, float voxel_m,
                      float trunc_m) {

@@ -23,17 +23,17 @@ using Clock = std::chrono::steady_clock;
 constexpr int kStrides[] = {10, 1};
 constexpr int kSelfCheckKeyframes = 3;
 
-struct Scene {
+struct SelectScene {
   std::unique_ptr<vk::Context> context;
   std::shared_ptr<sim::SimSessionDataset> map_session;
   std::shared_ptr<sim::SimSessionDataset> new_session;
   std::unique_ptr<DeviceFusion> fusion;
 };
 
-Scene makeScene(const SelectBenchOptions& o) {
+SelectScene makeScene(const SelectBenchOptions& o) {
   if (o.map_frames < 1 || o.keyframes < 1)
     throw InputError("--map-frames/--keyframes must be >= 1");
-  Scene s;
+  SelectScene s;
   vk::ContextOptions context_options;
   context_options.device_selector = o.device;
   s.context = vk::Context::create(context_options);
@@ -58,7 +58,7 @@ Scene makeScene(const SelectBenchOptions& o) {
   return s;
 }
 
-Json runStride(Scene& s, const std::vector<RgbdFrame>& frames, int stride, bool* ok) {
+Json runStride(SelectScene& s, const std::vector<RgbdFrame>& frames, int stride, bool* ok) {
   selection::ScorerConfig config;
   config.sample_stride_px = stride;
   selection::KeyframeScorer scorer(*s.context, config);
@@ -105,7 +105,7 @@ Json runStride(Scene& s, const std::vector<RgbdFrame>& frames, int stride, bool*
 
 int runChecked(const SelectBenchOptions& o) {
   const std::string load_at_start = loadAverage();
-  Scene scene = makeScene(o);
+  SelectScene scene = makeScene(o);
   std::vector<RgbdFrame> frames;
   for (std::size_t i = 0; i < scene.new_session->size(); ++i) {
     frames.push_back(scene.new_session->load(i));

@@ -18,25 +18,25 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 // Frames rendered before timing: the first frame builds the shared Embree scenes.
-constexpr int kWarmupFrames = 2;
+constexpr int kSimWarmupFrames = 2;
 
 Json benchWorld(const std::string& name, const SimBenchOptions& o) {
   const auto world = std::make_shared<const sim::World>(sim::World::load(sim::findWorld(name)));
   sim::SimSessionConfig config;
-  config.max_frames = o.frames + kWarmupFrames;
+  config.max_frames = o.frames + kSimWarmupFrames;
   config.camera.noise.enabled = o.noise;
   const auto build_start = Clock::now();
   const sim::SimSessionDataset session(world, 0, config);
   const double setup_s = std::chrono::duration<double>(Clock::now() - build_start).count();
-  for (int i = 0; i < kWarmupFrames; ++i) session.render(static_cast<std::size_t>(i));
+  for (int i = 0; i < kSimWarmupFrames; ++i) session.render(static_cast<std::size_t>(i));
   std::size_t valid_pixels = 0;
   const auto start = Clock::now();
-  for (std::size_t i = kWarmupFrames; i < session.size(); ++i) {
+  for (std::size_t i = kSimWarmupFrames; i < session.size(); ++i) {
     const sim::SimulatedFrame frame = session.render(i);
     for (float d : frame.depth.depth_m) valid_pixels += d > 0.0f ? 1 : 0;
   }
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  const double frames = static_cast<double>(session.size() - kWarmupFrames);
+  const double frames = static_cast<double>(session.size() - kSimWarmupFrames);
   // The grey stereo pair of `strata sim --stereo` (752x480, exposure and pixel noise), at the
   // same poses; rendering only (the PNG files are not written).
   const sim::StereoRecordingConfig stereo;
@@ -51,7 +51,7 @@ Json benchWorld(const std::string& name, const SimBenchOptions& o) {
   grey.exposure_offset_sigma = stereo.exposure_offset_sigma;
   const sim::GreyCamera grey_camera(grey);
   const auto grey_start = Clock::now();
-  for (std::size_t i = kWarmupFrames; i < session.size(); ++i) {
+  for (std::size_t i = kSimWarmupFrames; i < session.size(); ++i) {
     grey_camera.render(session.scene(), session.truePoses()[i], session.lighting(), i);
   }
   const double grey_s = std::chrono::duration<double>(Clock::now() - grey_start).count();
@@ -96,7 +96,7 @@ int runSimBench(const SimBenchOptions& o) {
     Json report = Json::object()
                       .set("benchmark", "sim")
                       .set("machine", machineInfo("host CPU (Embree ray casting)", load_at_start))
-                      .set("warmup_frames_excluded", kWarmupFrames)
+                      .set("warmup_frames_excluded", kSimWarmupFrames)
                       .set("results", results);
     emitReport(report, o.out_path);
     return 0;

@@ -14,16 +14,13 @@
 #include "preload.h"
 #include "track_peer.h"
 #include "trajectory/trajectory_error.h"
+#include "bench_timing.h"
 
 namespace strata::bench {
 namespace {
 
 /// Self-check: Strata's ATE on the redkitchen frames stays under this (the acceptance bound).
 constexpr double kSelfCheckAte_m = 0.03;
-
-std::string defaultDataDir() {
-  return std::filesystem::path(STRATA_SHARED_DATA_DIR "/redkitchen").lexically_normal().string();
-}
 
 traj::TrajectoryError ate(const PreloadedFrames& data,
                           const std::vector<Eigen::Isometry3d>& estimate,
@@ -104,7 +101,7 @@ StrataRun runStrata(const PreloadedFrames& data, const TrackBenchOptions& o) {
 }
 
 int runChecked(TrackBenchOptions options) {
-  if (options.data_dir.empty()) options.data_dir = defaultDataDir();
+  if (options.data_dir.empty()) options.data_dir = redkitchenDataDir();
   if (options.frames < 3) throw InputError("--frames must be >= 3");
   const MapperConfig config = mapperConfig(options);  // fail before the slow preload
   const std::string load_at_start = loadAverage();
@@ -171,7 +168,7 @@ int runChecked(TrackBenchOptions options) {
 CLI::App* addTrackCommand(CLI::App& app, TrackBenchOptions& o) {
   CLI::App* track = app.add_subcommand(
       "track", "RGB-D tracking without poses: Strata vs Open3D odometry, ATE and ms per frame");
-  o.data_dir = defaultDataDir();
+  o.data_dir = redkitchenDataDir();
   track->add_option("--data", o.data_dir, "TUM RGB-D or 7-Scenes folder")->capture_default_str();
   track->add_option("--frames", o.frames, "Frames from the start")->capture_default_str();
   track->add_option("--out", o.out_path, "Also write the JSON report here");
