@@ -10,7 +10,7 @@ PACKAGES=(
   libeigen3-dev libopencv-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev libembree-dev
   liblcm-dev liblcm-bin libglib2.0-dev iproute2 util-linux
-  clang libclang-rt-14-dev llvm
+  clang libclang-rt-14-dev llvm lld
   libceres-dev
   libsqlite3-dev
   libhnswlib-dev
