@@ -6,7 +6,8 @@
 #   build  configures and builds what the stage is for: every library (through the test
 #          executables labelled unit or device, which link all of them), the programs those tests
 #          start, and the libFuzzer targets; not the benchmarks and not the acceptance tests.
-#   test   runs the unit and device tests (ctest arguments after it, e.g. -R Mesh).
+#   test   runs the unit and device tests: each test program once with all its cases, or, with
+#          ctest arguments after it (e.g. -R Mesh), the selected cases one process each.
 #   all    (the default) both.
 # The heaviest unit/device tests, listed in scripts/sanitizers/heavy-tests.txt, are left to the
 # normal build unless STRATA_SANITIZE_ALL=1.
@@ -39,15 +40,27 @@ build() {
 
 run_tests() {
   source "$ROOT/scripts/sanitizers/env.sh"
-  cd "$BUILD"
-  local exclude=()
-  if [[ "${STRATA_SANITIZE_ALL:-0}" != 1 ]]; then
-    local heavy
-    heavy="$(grep -v '^#' "$ROOT/scripts/sanitizers/heavy-tests.txt" | grep . | paste -sd '|')"
-    exclude=(-E "^(${heavy})$")  # "." in a name matches itself too
+  local exclude="$ROOT/scripts/sanitizers/heavy-tests.txt"
+  if [[ "${STRATA_SANITIZE_ALL:-0}" == 1 ]]; then
+    exclude=""
+  else
     echo "sanitize.sh: leaving $(grep -vc '^#' "$ROOT/scripts/sanitizers/heavy-tests.txt") heavy tests to the normal build (STRATA_SANITIZE_ALL=1 runs them)"
   fi
-  ctest --output-on-failure -j 2 --timeout 900 -L "unit|device" "${exclude[@]}" "$@"
+  if (($# > 0)); then
+    # A selection (ctest arguments): one process per test case, as in the normal build.
+    local heavy
+    cd "$BUILD"
+    if [[ -n "$exclude" ]]; then
+      heavy="$(grep -v '^#' "$exclude" | grep . | paste -sd '|')"
+      ctest --output-on-failure -j 2 --timeout 900 -L "unit|device" -E "^(${heavy})$" "$@"
+    else
+      ctest --output-on-failure -j 2 --timeout 900 -L "unit|device" "$@"
+    fi
+  else
+    # Everything: each test program once, all its cases in one process (scripts/lib/
+    # run-test-programs.sh says why).
+    "$ROOT/scripts/lib/run-test-programs.sh" "$BUILD" 'unit|device' $exclude
+  fi
 }
 
 STRATA_SANITIZE_CMAKE_ARGS=(${STRATA_SANITIZE_CMAKE_ARGS:-})
