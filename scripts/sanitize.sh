@@ -27,8 +27,7 @@ esac
 
 build() {
   CC=clang CXX=clang++ cmake -S "$ROOT" -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-    -DSTRATA_BUILD_FUZZ=ON -DSTRATA_BUILD_BENCH=OFF -DSTRATA_WITH_OPEN3D=OFF -DSTRATA_BUILD_TESTS=ON \
-    "${STRATA_SANITIZE_CMAKE_ARGS[@]}"
+    -DSTRATA_BUILD_FUZZ=ON -DSTRATA_BUILD_BENCH=OFF -DSTRATA_WITH_OPEN3D=OFF -DSTRATA_BUILD_TESTS=ON
   local targets=()
   while read -r name label _; do
     [[ "$label" == unit || "$label" == device ]] && targets+=("$name")
@@ -63,7 +62,6 @@ run_tests() {
   fi
 }
 
-STRATA_SANITIZE_CMAKE_ARGS=(${STRATA_SANITIZE_CMAKE_ARGS:-})
 case "$MODE" in
   build) build ;;
   test) run_tests "$@" ;;

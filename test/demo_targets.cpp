@@ -22,6 +22,17 @@ apps::DemoOptions roomDemoOptions(const std::string& name) {
   return options;
 }
 
+apps::DemoOptions roomVioDemoOptions(const std::string& name, int frames) {
+  apps::DemoOptions options = roomDemoOptions(name);
+  options.objects = false;
+  options.sessions = 2;
+  options.frames = frames;
+  options.vio.enabled = true;
+  options.vio.width_px = 376;
+  options.vio.height_px = 240;
+  return options;
+}
+
 void expectRoomChangeTargets(const apps::DemoReport& report, std::size_t min_moved,
                              std::size_t min_arrivals) {
   const change::WorldEvaluation& e = report.evaluation;

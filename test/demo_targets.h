@@ -12,6 +12,10 @@ namespace strata::test {
 /// Demo options on the shipped room with the demo's settings and a fresh output folder `name`.
 apps::DemoOptions roomDemoOptions(const std::string& name);
 
+/// roomDemoOptions for `strata demo --vio` without the object database: two sessions of `frames`
+/// RGB-D frames each, fused on poses from stereo VIO over 376 x 240 grey stereo.
+apps::DemoOptions roomVioDemoOptions(const std::string& name, int frames);
+
 /// Change detection and keyframe selection (--incremental) against the truth: precision >= 99 %,
 /// recall >= 95 % of at least `min_moved` moved objects, >= 98 % of the static surface within
 /// 2 cm, <= 1 % of the static mesh on moved objects; the selected keyframes keep >= 98 % of the

@@ -137,13 +137,7 @@ TEST(ChangeDemo, FirstTwoRoomSessionsMeetTheTargets) {
 // Measured (104 s beside another test): 24-31 mm RMSE, 42-56 mm at most, 0.9-1.1 deg, 1 frame
 // skipped per session; change detection 7 of 7, precision 8 of 8.
 TEST(ChangeDemo, VioPosesOfTwoShortSessionsKeepChangeDetection) {
-  apps::DemoOptions options = test::roomDemoOptions("strata_change_demo_vio");
-  options.objects = false;
-  options.sessions = 2;
-  options.frames = 20;
-  options.vio.enabled = true;
-  options.vio.width_px = 376;
-  options.vio.height_px = 240;
+  const apps::DemoOptions options = test::roomVioDemoOptions("strata_change_demo_vio", 20);
   const apps::DemoReport report = apps::runDemoPipeline(options);
   test::expectVioDemoTargets(report, 2, 20, kShortVioMoved);
   fs::remove_all(options.out_dir);

@@ -34,13 +34,7 @@ TEST(ChangeDemo, DefaultRoomMeetsItsTargets) {
 // detection 7 of 7, precision 8 of 8 or 8 of 9 segments (in some runs one ghost where session 0's
 // map and the static map disagree by the VIO's drift); the truth's poses give 7 of 7 and 8 of 8.
 TEST(ChangeDemo, VioPosesKeepChangeDetection) {
-  apps::DemoOptions options = test::roomDemoOptions("strata_change_demo_vio_long");
-  options.objects = false;
-  options.sessions = 2;
-  options.frames = 30;
-  options.vio.enabled = true;
-  options.vio.width_px = 376;
-  options.vio.height_px = 240;
+  const apps::DemoOptions options = test::roomVioDemoOptions("strata_change_demo_vio_long", 30);
   const apps::DemoReport report = apps::runDemoPipeline(options);
   test::expectVioDemoTargets(report, 2, 30, 5);
   fs::remove_all(options.out_dir);
