@@ -5,15 +5,15 @@
 #include <cstdio>
 #include <memory>
 
-#include "align/alignment_eval.h"
-#include "align/session_alignment.h"
-#include "core/dataset.h"
-#include "core/error.h"
+#include "strata/align/alignment_eval.h"
+#include "strata/align/session_alignment.h"
+#include "strata/core/dataset.h"
+#include "strata/core/error.h"
 #include "json.h"
 #include "machine_info.h"
-#include "sim/sensors/odometry_frame.h"
-#include "sim/session/sim_session.h"
-#include "sim/world/world_paths.h"
+#include "strata/sim/sensors/odometry_frame.h"
+#include "strata/sim/session/sim_session.h"
+#include "strata/sim/world/world_paths.h"
 
 namespace strata::bench {
 namespace {
@@ -54,19 +54,6 @@ Session makeSession(const std::shared_ptr<const sim::World>& world, int index,
   return session;
 }
 
-align::AlignSession alignInput(const sim::SimSessionDataset& d, const Dataset& frames) {
-  align::AlignSession s;
-  s.name = d.name();
-  s.frames = &frames;
-  for (std::size_t i = 0; i < d.size(); ++i) {
-    const FrameStamp stamp = d.stamp(i);
-    s.frame_timestamps_s.push_back(stamp.timestamp_s);
-    s.frame_T_S_C.push_back(stamp.T_W_C);
-    s.keyframes.push_back(i);
-  }
-  return s;
-}
-
 double perKeyframeMs(double seconds, std::size_t keyframes) {
   return keyframes > 0 ? 1e3 * seconds / static_cast<double>(keyframes) : 0.0;
 }
@@ -102,7 +89,7 @@ int runAlignBench(const AlignBenchOptions& o) {
     for (int s = 0; s < o.sessions; ++s) {
       sessions.push_back(makeSession(world, s % world->sessionCount(), o));
       rendered.push_back(std::make_unique<RenderedFrames>(*sessions.back()));
-      inputs.push_back(alignInput(*sessions.back(), *rendered.back()));
+      inputs.push_back(align::sessionFromDataset(*sessions.back(), &*rendered.back()));
       truth.emplace_back(sessions.back()->truePoses().begin(), sessions.back()->truePoses().end());
     }
     const double render_s =

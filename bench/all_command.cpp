@@ -9,8 +9,8 @@
 #include <sstream>
 
 #include "child_process.h"
-#include "core/atomic_file.h"
-#include "core/error.h"
+#include "strata/core/atomic_file.h"
+#include "strata/core/error.h"
 #include "machine_info.h"
 #include "suite_plots.h"
 
@@ -66,10 +66,6 @@ json readReport(const fs::path& path) {
     std::fprintf(stderr, "strata-bench all: %s is not valid JSON: %s\n", path.c_str(), e.what());
     return json();
   }
-}
-
-void writeText(const fs::path& path, const std::string& text) {
-  writeFileAtomically(path.string(), std::vector<std::uint8_t>(text.begin(), text.end()));
 }
 
 std::string commandLine(const Run& run) {
@@ -141,7 +137,7 @@ int runChecked(const AllBenchOptions& o) {
               {"runs", runs},
               {"plots", plots},
               {"all_passed", all_ok}};
-  writeText(dir / "all.json", all.dump(2) + "\n");
+  writeTextAtomically(dir / "all.json", all.dump(2) + "\n");
   std::ostringstream md;
   md << "# strata-bench all\n\n| benchmark | command | exit | seconds |\n|---|---|---|---|\n";
   for (const json& r : runs) {
@@ -149,7 +145,7 @@ int runChecked(const AllBenchOptions& o) {
        << "` | " << r["exit_code"].get<int>() << " | " << r["seconds"].get<double>() << " |\n";
   }
   if (!fuse.is_null()) md << "\n## Fusion (medians)\n\n" << fuseMarkdownTable(fuse);
-  writeText(dir / "summary.md", md.str());
+  writeTextAtomically(dir / "summary.md", md.str());
   std::fprintf(stderr, "strata-bench all: wrote %s/all.json, summary.md and %zu plots%s\n",
                o.out_dir.c_str(), plots.size(), all_ok ? "" : " (a benchmark failed)");
   std::printf("%s\n", all.dump(2).c_str());

@@ -4,14 +4,11 @@
 #include <filesystem>
 #include <string>
 
+#include "strata/core/clock.h"
+
 namespace strata::bench {
 
 using Clock = std::chrono::steady_clock;
-
-/// Milliseconds of wall time from `start` to now.
-inline double msSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 /// The redkitchen frames in the shared test data, the default input of the fusion, ESDF and
 /// tracking benchmarks.

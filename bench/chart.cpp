@@ -7,8 +7,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "core/atomic_file.h"
-#include "core/error.h"
+#include "strata/core/atomic_file.h"
+#include "strata/core/error.h"
 
 namespace strata::bench {
 namespace {

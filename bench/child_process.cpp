@@ -8,7 +8,7 @@
 #include <cstring>
 #include <filesystem>
 
-#include "core/error.h"
+#include "strata/core/error.h"
 
 extern char** environ;
 

@@ -3,10 +3,10 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
-#include "core/error.h"
+#include "strata/core/error.h"
 #include "diff_runs.h"
 #include "machine_info.h"
-#include "sim/world/world_paths.h"
+#include "strata/sim/world/world_paths.h"
 
 namespace strata::bench {
 namespace {

@@ -2,7 +2,7 @@
 
 #include <cstdio>
 
-#include "sim/session/sim_session.h"
+#include "strata/sim/session/sim_session.h"
 #include "summary.h"
 
 namespace strata::bench {

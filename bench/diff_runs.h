@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "change/change_detector.h"
+#include "strata/change/change_detector.h"
 #include "json.h"
-#include "sim/world/world.h"
+#include "strata/sim/world/world.h"
 
 namespace strata::bench {
 

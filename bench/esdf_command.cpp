@@ -5,12 +5,12 @@
 #include <filesystem>
 #include <memory>
 
-#include "core/error.h"
+#include "strata/core/error.h"
 #include "esdf_runs.h"
 #include "fuse_runs.h"  // kWarmupFrames
 #include "machine_info.h"
-#include "sim/session/sim_session.h"
-#include "sim/world/world_paths.h"
+#include "strata/sim/session/sim_session.h"
+#include "strata/sim/world/world_paths.h"
 #include "bench_timing.h"
 
 namespace strata::bench {

@@ -8,8 +8,8 @@
 
 #include "cli/esdf_slice.h"
 #include "esdf_runs.h"
-#include "esdf/esdf_query.h"
-#include "esdf/esdf_query_kernel.h"
+#include "strata/esdf/esdf_query.h"
+#include "strata/esdf/esdf_query_kernel.h"
 #include "bench_timing.h"
 
 namespace strata::bench {

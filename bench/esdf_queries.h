@@ -3,8 +3,8 @@
 // the same points (half near observed voxels, half anywhere in the map's box), their agreement,
 // and the time to render a slice picture.
 #include "json.h"
-#include "esdf/esdf.h"
-#include "vk/vk.h"
+#include "strata/esdf/esdf.h"
+#include "strata/vk/vk.h"
 
 namespace strata::bench {
 

@@ -3,10 +3,10 @@
 #include <chrono>
 #include <cstdio>
 
-#include "cli/esdf_command.h"
+#include "strata/esdf/esdf_compare.h"
 #include "esdf_queries.h"
 #include "fuse_runs.h"  // kWarmupFrames
-#include "integrate/device_fusion.h"
+#include "strata/integrate/device_fusion.h"
 #include "summary.h"
 #include "bench_timing.h"
 
@@ -39,7 +39,7 @@ void fuseWithEsdf(const Dataset& data, const EsdfBenchSettings& s, DeviceFusion&
   }
 }
 
-Json agreementJson(const apps::EsdfAgreement& a) {
+Json agreementJson(const EsdfAgreement& a) {
   return Json::object()
       .set("voxels_compared", a.compared)
       .set("share_over_one_voxel", a.compared > 0 ? double(a.over_voxel) / a.compared : 0.0)
@@ -103,7 +103,7 @@ EsdfRun runEsdfBench(const std::string& input, const Dataset& data, const EsdfBe
   EsdfMap device_map;
   esdf.download(device_map);
   run.known_voxels = knownVoxels(device_map);
-  const apps::EsdfAgreement agreement = apps::compareEsdfWithReference(device_map, reference);
+  const EsdfAgreement agreement = compareEsdfWithReference(device_map, reference);
   run.agreement = agreementJson(agreement);
   run.ok = run.blocks > 0 && agreement.compared > 0 && agreement.ok();
 

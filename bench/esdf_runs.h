@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
-#include "io/dataset.h"
+#include "strata/io/open_dataset.h"
 #include "json.h"
-#include "esdf/esdf.h"
-#include "map/map_config.h"
+#include "strata/esdf/esdf.h"
+#include "strata/map/map_config.h"
 
 namespace strata::bench {
 

@@ -6,14 +6,15 @@
 #include <cstdio>
 #include <random>
 
-#include "core/error.h"
-#include "core/statistics.h"
-#include "explore/view_gain.h"
-#include "integrate/device_fusion.h"
+#include "strata/core/clock.h"
+#include "strata/core/error.h"
+#include "strata/core/statistics.h"
+#include "strata/explore/view_gain.h"
+#include "strata/integrate/device_fusion.h"
 #include "json.h"
 #include "machine_info.h"
-#include "sim/session/sim_session.h"
-#include "sim/world/world_paths.h"
+#include "strata/sim/session/sim_session.h"
+#include "strata/sim/world/world_paths.h"
 
 namespace strata::bench {
 namespace {
@@ -96,7 +97,7 @@ Json runBatch(GainScene& s, explore::ViewGainKernel& kernel, const std::vector<E
     double ms = 0.0;
     const auto start = Clock::now();
     const std::vector<explore::ViewGain> gains = kernel.run(s.fusion->map(), positions, &ms);
-    wall_ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
+    wall_ms.push_back(msSince(start));
     device_ms.push_back(ms);
     mean_best_m3 = 0.0;
     for (const explore::ViewGain& g : gains) mean_best_m3 += g.best_gain_m3 / gains.size();
@@ -133,7 +134,7 @@ int runChecked(const ExploreGainBenchOptions& o) {
   const std::vector<explore::ViewGain> reference =
       explore::viewGainReference(host, config, checked);
   const double reference_ms =
-      std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+      msSince(start);
   const bool ok = sameGains(kernel.run(scene.fusion->map(), checked), reference);
 
   const Json settings =

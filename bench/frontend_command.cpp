@@ -12,41 +12,25 @@
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
-#include "core/error.h"
-#include "core/statistics.h"
+#include "strata/core/error.h"
+#include "strata/core/statistics.h"
 #include "json.h"
 #include "machine_info.h"
-#include "odometry/frontend/feature_tracker.h"
-#include "sim/sensors/analytic_ray_scene.h"
-#include "sim/sensors/grey_camera.h"
+#include "strata/odometry/frontend/feature_tracker.h"
+#include "strata/sim/default_scene.h"
+#include "strata/sim/sensors/analytic_ray_scene.h"
+#include "strata/sim/sensors/grey_camera.h"
 
 namespace strata::bench {
 namespace {
 
 using odometry::FrameFeatures;
 
-// Fixed scene (the room of test_frontend_tracking.cpp): six textured walls and two boxes, a
-// 752x480 pair with 0.11 m baseline sliding 3 cm and turning 0.4 degrees per frame.
+// Fixed scene (sim::makeStereoTestRoom, shared with the front end's tests): six textured walls
+// and two boxes, a 752x480 pair with 0.11 m baseline sliding 3 cm and turning 0.4 degrees per
+// frame.
 constexpr int kWidth = 752, kHeight = 480;
 constexpr double kFocal = 460.0, kBaseline = 0.11;
-
-sim::AnalyticRayScene room() {
-  sim::AnalyticRayScene scene(0);
-  using V = Eigen::Vector3d;
-  scene.add(sim::Plane{V(0, 0, 0), V(0, 0, 1), {150, 140, 130}});
-  scene.add(sim::Plane{V(0, 0, 3), V(0, 0, -1), {200, 200, 200}});
-  scene.add(sim::Plane{V(0, 4, 0), V(0, -1, 0), {180, 170, 160}});
-  scene.add(sim::Plane{V(0, -4, 0), V(0, 1, 0), {180, 170, 160}});
-  scene.add(sim::Plane{V(3, 0, 0), V(-1, 0, 0), {160, 180, 170}});
-  scene.add(sim::Plane{V(-3, 0, 0), V(1, 0, 0), {160, 180, 170}});
-  scene.add(
-      sim::Box{V(-0.6, 1.5, 0.5), V(0.3, 0.3, 0.5), Eigen::Matrix3d::Identity(), {90, 110, 200}});
-  scene.add(sim::Box{V(0.9, 2.2, 1.2),
-                     V(0.4, 0.25, 0.3),
-                     Eigen::AngleAxisd(0.5, V::UnitZ()).matrix(),
-                     {210, 120, 90}});
-  return scene;
-}
 
 Eigen::Isometry3d pose(int k) {
   Eigen::Matrix3d R;
@@ -102,7 +86,7 @@ Json summary(const std::string& name, const Series& s) {
 }
 
 Json benchSim(int frames) {
-  const sim::AnalyticRayScene scene = room();
+  const sim::AnalyticRayScene scene = sim::makeStereoTestRoom(0);
   sim::GreyCameraConfig config;
   config.intrinsics.width_px = kWidth;
   config.intrinsics.height_px = kHeight;

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "core/error.h"
+#include "strata/core/error.h"
 #include "fuse_runs.h"
 #include "machine_info.h"
 #include "open3d_peer.h"

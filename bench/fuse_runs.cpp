@@ -3,9 +3,9 @@
 #include <chrono>
 #include <cstdio>
 
-#include "integrate/tsdf_integration.h"
+#include "strata/integrate/tsdf_integration.h"
 #include "machine_info.h"
-#include "mesh/extract_mesh.h"
+#include "strata/mesh/extract_mesh.h"
 #include "summary.h"
 #include "bench_timing.h"
 

@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "json.h"
-#include "integrate/device_fusion.h"
-#include "map/map_config.h"
-#include "mesh/mesh.h"
+#include "strata/integrate/device_fusion.h"
+#include "strata/map/map_config.h"
+#include "strata/mesh/mesh.h"
 #include "preload.h"
 
 namespace strata::bench {

@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "core/atomic_file.h"
+#include "strata/core/atomic_file.h"
 
 namespace strata::bench {
 namespace {

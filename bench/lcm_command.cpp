@@ -3,12 +3,12 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
-#include "core/error.h"
+#include "strata/core/error.h"
 #include "lcm_runs.h"
 #include "machine_info.h"
-#include "sim/session/sim_session.h"
-#include "sim/world/world.h"
-#include "sim/world/world_paths.h"
+#include "strata/sim/session/sim_session.h"
+#include "strata/sim/world/world.h"
+#include "strata/sim/world/world_paths.h"
 
 namespace strata::bench {
 namespace {

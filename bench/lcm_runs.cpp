@@ -12,8 +12,8 @@
 #include "mapper_node/mapper_core.h"
 #include "mapper_node/mapper_node.h"
 #include "player/play_publisher.h"
-#include "core/error.h"
-#include "lcm/lcm_time.h"
+#include "strata/core/error.h"
+#include "strata/lcm/lcm_time.h"
 #include "strata/map_stats_t.hpp"
 #include "strata/mesh_update_t.hpp"
 

@@ -5,9 +5,9 @@
 #include <vector>
 
 #include "mapper_node/mapper_options.h"
-#include "core/types.h"
+#include "strata/core/types.h"
 #include "json.h"
-#include "vk/vk.h"
+#include "strata/vk/vk.h"
 
 namespace strata::bench {
 

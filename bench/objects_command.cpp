@@ -5,11 +5,11 @@
 #include <chrono>
 #include <cstdio>
 
-#include "core/error.h"
-#include "core/statistics.h"
+#include "strata/core/error.h"
+#include "strata/core/statistics.h"
 #include "json.h"
 #include "machine_info.h"
-#include "objects/object_database.h"
+#include "strata/objects/object_database.h"
 #include "objects_scene.h"
 #include "summary.h"
 #include "bench_timing.h"

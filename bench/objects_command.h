@@ -1,6 +1,6 @@
 #pragma once
 // `strata-bench objects`: the object database's matching time against databases of N models
-// (host/objects/object_database.h). Models are the simulator's shapes of assorted kinds, sizes and
+// (src/strata/objects/object_database.h). Models are the simulator's shapes of assorted kinds, sizes and
 // colours, each observed completely in an analytic session (objects_scene.h); the queries are
 // half views of five of them at new yaws. Per N: prefilter candidates, registrations run and ms
 // per segment (observation + matching + merge, median and p90), and how the time grows with N;

@@ -5,9 +5,9 @@
 #include <limits>
 #include <random>
 
-#include "map/block_index.h"
-#include "sim/world/shape_mesh.h"
-#include "sim/world/triangle_distance.h"
+#include "strata/map/block_index.h"
+#include "strata/sim/world/shape_mesh.h"
+#include "strata/sim/world/triangle_distance.h"
 
 namespace strata::bench {
 namespace {

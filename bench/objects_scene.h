@@ -10,9 +10,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "change/objects.h"
-#include "map/tsdf_map.h"
-#include "sim/world/world_spec.h"
+#include "strata/change/object_discovery.h"
+#include "strata/map/tsdf_map.h"
+#include "strata/sim/world/world_spec.h"
 
 namespace strata::bench {
 

@@ -4,14 +4,14 @@
 #include <cstdio>
 #include <memory>
 
-#include "cli/sim_setup.h"
-#include "core/error.h"
-#include "eval/occupancy_compare.h"
+#include "strata/sim/sim_setup.h"
+#include "strata/core/error.h"
+#include "strata/occupancy/eval/occupancy_compare.h"
 #include "json.h"
 #include "machine_info.h"
-#include "sim/analytic_dataset.h"
-#include "sim/session/sim_session.h"
-#include "sim/world/world_paths.h"
+#include "strata/sim/analytic_dataset.h"
+#include "strata/sim/session/sim_session.h"
+#include "strata/sim/world/world_paths.h"
 
 namespace strata::bench {
 namespace {
@@ -108,8 +108,8 @@ Json runScenes(vk::Context& context, const OccupancyBenchOptions& o, bool& ok) {
       context, analytic, [&](std::size_t i) { return analytic.load(i); },
       [&](const Eigen::Vector3d& p) { return analytic.scene().signedDistance(p); }, setup);
 
-  const sim::SimSessionDataset session(apps::loadWorld(sim::findWorld(o.world), 0, 0), 0,
-                                       apps::sessionConfig(30.0, o.frames, true, false));
+  const sim::SimSessionDataset session(sim::loadWorld(sim::findWorld(o.world), 0, 0), 0,
+                                       sim::sessionConfig(30.0, o.frames, true, false));
   std::fprintf(stderr, "strata-bench occupancy: %s\n", session.name().c_str());
   if (!o.ply_dir.empty()) setup.ply_prefix = o.ply_dir + "/" + o.world + "_";
   const auto truth_frame = [&](std::size_t i) {

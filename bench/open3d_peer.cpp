@@ -4,7 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "mesh/mesh_metrics.h"
+#include "strata/core/clock.h"
+#include "strata/mesh/mesh_metrics.h"
 #include "open3d/Open3DConfig.h"
 #include "open3d/core/Tensor.h"
 #include "open3d/t/geometry/Image.h"
@@ -167,7 +168,7 @@ class Open3dPeerImpl final : public Open3dPeer {
         grid.Integrate(blocks, depth_[i], color_[i], intrinsic_, T_C_W_[i], kDepthScale,
                        config.max_depth_m, config.truncation_voxels);
       }
-      frame_ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
+      frame_ms.push_back(msSince(start));
     }
     const std::int64_t blocks = grid.GetHashMap().Size() - 1;  // less the placeholder
     Mesh mesh;
@@ -176,7 +177,7 @@ class Open3dPeerImpl final : public Open3dPeer {
     if (can_mesh) {
       const auto mesh_start = Clock::now();
       mesh = toStrataMesh(grid.ExtractTriangleMesh(kMeshWeightThreshold));
-      mesh_ms = std::chrono::duration<double, std::milli>(Clock::now() - mesh_start).count();
+      mesh_ms = msSince(mesh_start);
     }
     std::fprintf(stderr, "  open3d: %zu frames, %ld blocks, mesh %zu vertices\n", depth_.size(),
                  static_cast<long>(blocks), mesh.vertices.size());

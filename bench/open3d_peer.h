@@ -7,7 +7,7 @@
 
 #include "fuse_runs.h"
 #include "json.h"
-#include "map/map_config.h"
+#include "strata/map/map_config.h"
 #include "preload.h"
 
 namespace strata::bench {

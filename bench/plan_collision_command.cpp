@@ -6,14 +6,14 @@
 #include <cstdio>
 #include <random>
 
-#include "core/error.h"
+#include "strata/core/error.h"
 #include "json.h"
 #include "machine_info.h"
-#include "mapper/mapper.h"
-#include "plan/collision_checker.h"
-#include "plan/rrt_planner.h"
-#include "sim/session/sim_session.h"
-#include "sim/world/world_paths.h"
+#include "strata/mapper/mapper.h"
+#include "strata/plan/collision_checker.h"
+#include "strata/plan/rrt_planner.h"
+#include "strata/sim/session/sim_session.h"
+#include "strata/sim/world/world_paths.h"
 #include "bench_timing.h"
 
 namespace strata::bench {

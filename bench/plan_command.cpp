@@ -5,11 +5,11 @@
 #include <cstdio>
 
 #include "chart.h"
-#include "core/error.h"
+#include "strata/core/error.h"
 #include "json.h"
 #include "machine_info.h"
-#include "map/map_file.h"
-#include "plan/grid_astar.h"
+#include "strata/map/map_file.h"
+#include "strata/plan/grid_astar.h"
 #include "plan_runs.h"
 #include "plan_update.h"
 #include "plan_world_map.h"

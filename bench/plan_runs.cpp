@@ -4,9 +4,9 @@
 #include <cmath>
 #include <random>
 
-#include "core/error.h"
-#include "core/statistics.h"
-#include "plan/planner_factory.h"
+#include "strata/core/error.h"
+#include "strata/core/statistics.h"
+#include "strata/plan/planner_factory.h"
 
 namespace strata::bench {
 

@@ -6,10 +6,10 @@
 #include <utility>
 #include <vector>
 
-#include "core/statistics.h"  // quantile
+#include "strata/core/statistics.h"  // quantile
 #include "json.h"
-#include "plan/collision_checker.h"
-#include "plan/traversability.h"
+#include "strata/plan/collision_checker.h"
+#include "strata/plan/traversability.h"
 
 namespace strata::bench {
 

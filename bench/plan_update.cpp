@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <chrono>
 
-#include "esdf/esdf.h"
+#include "strata/esdf/esdf.h"
 
 namespace strata::bench {
 namespace {

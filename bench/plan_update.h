@@ -5,7 +5,7 @@
 #include <Eigen/Geometry>
 
 #include "json.h"
-#include "plan/topo_map.h"
+#include "strata/plan/topo_map.h"
 #include "plan_world_map.h"
 
 namespace strata::bench {

@@ -4,15 +4,14 @@
 #include <chrono>
 #include <cmath>
 
-#include "esdf/esdf.h"
-#include "mesh/parallel_for.h"  // header-only work sharing (std::thread)
-#include "sim/world/world.h"
-#include "sim/world/world_paths.h"
+#include "strata/esdf/esdf.h"
+#include "strata/core/parallel_for.h"
+#include "strata/sim/world/world.h"
+#include "strata/sim/world/world_paths.h"
 #include "bench_timing.h"
 
 namespace strata::bench {
 namespace {
-
 
 TsdfBlock truthBlock(const sim::WorldScene& scene, const BlockIndex& b, float voxel_m,
                      float trunc_m) {
@@ -49,7 +48,7 @@ WorldMap buildWorldMap(const std::string& world_name, float voxel_size_m,
       for (int x = b0.x(); x <= b1.x(); ++x) indices.emplace_back(x, y, z);
   std::vector<TsdfBlock> blocks(indices.size());
   const float trunc_m = config.truncationDistance();
-  detail::parallelForChunks(indices.size(), detail::resolveThreadCount(0), 4,
+  parallelForChunks(indices.size(), resolveThreadCount(0), 4,
                             [&](std::size_t begin, std::size_t end) {
                               for (std::size_t i = begin; i < end; ++i) {
                                 blocks[i] = truthBlock(*scene, indices[i], voxel_size_m, trunc_m);

@@ -7,8 +7,8 @@
 // corners a simulated camera path happened to see; unknown space then lies only deep inside solids.
 #include <string>
 
-#include "map/esdf_layer.h"
-#include "map/tsdf_map.h"
+#include "strata/map/esdf_layer.h"
+#include "strata/map/tsdf_map.h"
 
 namespace strata::bench {
 

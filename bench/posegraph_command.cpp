@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "align/pose_graph.h"
-#include "align/synthetic_sessions.h"
-#include "core/error.h"
+#include "strata/align/pose_graph.h"
+#include "strata/align/synthetic_sessions.h"
+#include "strata/core/error.h"
 #include "json.h"
 #include "machine_info.h"
 

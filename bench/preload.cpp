@@ -3,8 +3,8 @@
 #include <chrono>
 #include <cstdio>
 
-#include "core/error.h"
-#include "io/dataset.h"
+#include "strata/core/error.h"
+#include "strata/io/open_dataset.h"
 #include "machine_info.h"
 
 namespace strata::bench {

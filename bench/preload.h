@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "core/types.h"
+#include "strata/core/types.h"
 
 namespace strata::bench {
 

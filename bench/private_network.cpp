@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "child_process.h"
-#include "core/error.h"
+#include "strata/core/error.h"
 
 namespace strata::bench {
 namespace {

@@ -5,14 +5,15 @@
 #include <chrono>
 #include <cstdio>
 
-#include "core/error.h"
-#include "core/statistics.h"
-#include "integrate/device_fusion.h"
+#include "strata/core/clock.h"
+#include "strata/core/error.h"
+#include "strata/core/statistics.h"
+#include "strata/integrate/device_fusion.h"
 #include "json.h"
 #include "machine_info.h"
-#include "select/keyframe_scorer.h"
-#include "sim/session/sim_session.h"
-#include "sim/world/world_paths.h"
+#include "strata/select/keyframe_scorer.h"
+#include "strata/sim/session/sim_session.h"
+#include "strata/sim/world/world_paths.h"
 
 namespace strata::bench {
 namespace {
@@ -74,7 +75,7 @@ Json runStride(SelectScene& s, const std::vector<RgbdFrame>& frames, int stride,
     const auto start = Clock::now();
     const auto score =
         scorer.score(s.fusion->map(), frames[i], s.new_session->intrinsics(), &ms, &device);
-    wall_ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
+    wall_ms.push_back(msSince(start));
     device_ms.push_back(ms);
     coverage += score.coverage;
     samples = score.samples;

@@ -5,13 +5,13 @@
 #include <chrono>
 #include <cstdio>
 
-#include "core/error.h"
+#include "strata/core/error.h"
 #include "json.h"
 #include "machine_info.h"
-#include "sim/sensors/grey_camera.h"
-#include "sim/session/sim_session.h"
-#include "sim/session/stereo_recording.h"
-#include "sim/world/world_paths.h"
+#include "strata/sim/sensors/grey_camera.h"
+#include "strata/sim/session/sim_session.h"
+#include "strata/sim/session/stereo_recording.h"
+#include "strata/sim/world/world_paths.h"
 
 namespace strata::bench {
 namespace {

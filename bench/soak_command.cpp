@@ -5,16 +5,16 @@
 #include <filesystem>
 
 #include "chart.h"
-#include "core/error.h"
-#include "io/tum_writer.h"
-#include "lcm/channels.h"
+#include "strata/core/error.h"
+#include "strata/io/tum_writer.h"
+#include "strata/lcm/channels.h"
 #include "machine_info.h"
-#include "sim/session/sim_session.h"
-#include "sim/world/world.h"
-#include "sim/world/world_paths.h"
+#include "strata/sim/session/sim_session.h"
+#include "strata/sim/world/world.h"
+#include "strata/sim/world/world_paths.h"
 #include "soak_chart.h"
 #include "soak_report.h"
-#include "vk/vk.h"
+#include "strata/vk/vk.h"
 
 namespace strata::bench {
 namespace {

@@ -8,8 +8,8 @@
 #include <lcm/lcm-cpp.hpp>
 
 #include "child_process.h"
-#include "core/error.h"
-#include "lcm/channels.h"
+#include "strata/core/error.h"
+#include "strata/lcm/channels.h"
 #include "player/play_flow.h"
 #include "private_network.h"
 

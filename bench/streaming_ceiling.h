@@ -1,7 +1,7 @@
 #pragma once
 // The device's streaming ceiling: GB/s a trivial copy kernel (shaders/vk/stream_copy.comp, vec4
 // accesses, 256-invocation workgroups) moves, read plus written, measured with timestamps.
-#include "vk/vk.h"
+#include "strata/vk/vk.h"
 
 namespace strata::bench {
 

@@ -3,7 +3,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "core/statistics.h"
+#include "strata/core/statistics.h"
 #include "json.h"
 
 namespace strata::bench {

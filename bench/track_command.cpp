@@ -6,14 +6,14 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "core/error.h"
-#include "core/statistics.h"
+#include "strata/core/error.h"
+#include "strata/core/statistics.h"
 #include "json.h"
 #include "machine_info.h"
-#include "mapper/mapper.h"
+#include "strata/mapper/mapper.h"
 #include "preload.h"
 #include "track_peer.h"
-#include "trajectory/trajectory_error.h"
+#include "strata/trajectory/trajectory_error.h"
 #include "bench_timing.h"
 
 namespace strata::bench {
@@ -22,16 +22,16 @@ namespace {
 /// Self-check: Strata's ATE on the redkitchen frames stays under this (the acceptance bound).
 constexpr double kSelfCheckAte_m = 0.03;
 
-traj::TrajectoryError ate(const PreloadedFrames& data,
+trajectory::TrajectoryError ate(const PreloadedFrames& data,
                           const std::vector<Eigen::Isometry3d>& estimate,
                           const std::vector<bool>& present,
-                          traj::Alignment alignment = traj::Alignment::kSE3) {
-  std::vector<traj::StampedPose> est, truth;
+                          trajectory::Alignment alignment = trajectory::Alignment::kSE3) {
+  std::vector<trajectory::StampedPose> est, truth;
   for (std::size_t i = 0; i < data.frames.size(); ++i) {
     truth.push_back({data.frames[i].timestamp_s, data.frames[i].T_W_C});
     if (present[i]) est.push_back({data.frames[i].timestamp_s, estimate[i]});
   }
-  return traj::evaluateTrajectory(est, truth, alignment);
+  return trajectory::evaluateTrajectory(est, truth, alignment);
 }
 
 /// ATE after SE(3) alignment, and the drift from the first pose (both start at the dataset's
@@ -39,8 +39,8 @@ traj::TrajectoryError ate(const PreloadedFrames& data,
 /// rotation about the path free, so rotation errors are given from the first-pose alignment.
 Json ateJson(const PreloadedFrames& data, const std::vector<Eigen::Isometry3d>& estimate,
              const std::vector<bool>& present) {
-  const traj::TrajectoryError se3 = ate(data, estimate, present);
-  const traj::TrajectoryError first = ate(data, estimate, present, traj::Alignment::kFirstPose);
+  const trajectory::TrajectoryError se3 = ate(data, estimate, present);
+  const trajectory::TrajectoryError first = ate(data, estimate, present, trajectory::Alignment::kFirstPose);
   return Json::object()
       .set("matched", se3.matched)
       .set("path_length_m", se3.path_length_m)
@@ -107,7 +107,7 @@ int runChecked(TrackBenchOptions options) {
   const std::string load_at_start = loadAverage();
   const PreloadedFrames data = preloadFrames(options.data_dir, options.frames);
   const StrataRun strata = runStrata(data, options);
-  const traj::TrajectoryError strata_error = ate(data, strata.T_W_C, strata.fused);
+  const trajectory::TrajectoryError strata_error = ate(data, strata.T_W_C, strata.fused);
   const double strata_ms = mean(strata.track_ms);
   Json strata_json = Json::object()
                          .set("method",
@@ -131,7 +131,7 @@ int runChecked(TrackBenchOptions options) {
   Json peer_json;  // null without the peer
   Json ratios;
   if (peer.available) {
-    const traj::TrajectoryError peer_error =
+    const trajectory::TrajectoryError peer_error =
         ate(data, peer.T_W_C, std::vector<bool>(data.frames.size(), true));
     const double peer_ms = mean(peer.ms);
     peer_json =

@@ -11,6 +11,8 @@
 #include "open3d/utility/Parallel.h"
 #include "track_peer.h"
 
+#include "strata/core/clock.h"
+
 namespace strata::bench {
 namespace {
 
@@ -58,8 +60,7 @@ PeerTrajectory runPeerOdometry(const PreloadedFrames& data) {
     // into the previous camera (T_prev_new), as Open3D's reconstruction system chains it.
     const auto [success, T_prev_new, information] =
         open3d::pipelines::odometry::ComputeRGBDOdometry(*images[i], *images[i - 1], intrinsic);
-    out.ms.push_back(std::chrono::duration<double, std::milli>(
-                         std::chrono::steady_clock::now() - start).count());
+    out.ms.push_back(msSince(start));
     Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
     if (success) {
       step.matrix() = T_prev_new;

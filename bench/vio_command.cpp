@@ -7,13 +7,14 @@
 #include <ctime>
 #include <vector>
 
-#include "core/error.h"
-#include "core/statistics.h"
+#include "strata/core/clock.h"
+#include "strata/core/error.h"
+#include "strata/core/statistics.h"
 #include "json.h"
 #include "machine_info.h"
-#include "odometry/synthetic/vio_scenario.h"
-#include "odometry/vio_estimator.h"
-#include "trajectory/trajectory_error.h"
+#include "strata/odometry/synthetic/vio_scenario.h"
+#include "strata/odometry/vio_estimator.h"
+#include "strata/trajectory/trajectory_error.h"
 
 namespace strata::bench {
 namespace {
@@ -34,13 +35,13 @@ double threadCpuMs() {
 struct RunResult {
   std::vector<double> frame_ms, frame_cpu_ms;
   int tracked = 0, failed = 0;
-  traj::TrajectoryError error;
+  trajectory::TrajectoryError error;
 };
 
 RunResult runOnce(const odometry::synthetic::Scenario& s, const odometry::VioConfig& config) {
   odometry::VioEstimator estimator(config, s.rig);
   RunResult r;
-  std::vector<traj::StampedPose> estimated, truth;
+  std::vector<trajectory::StampedPose> estimated, truth;
   std::size_t next_imu = 0;
   for (std::size_t f = 0; f < s.frames.size(); ++f) {
     while (next_imu < s.imu.size() && s.imu[next_imu].t_s <= s.frames[f].t_s + 1e-9) {
@@ -51,8 +52,7 @@ RunResult runOnce(const odometry::synthetic::Scenario& s, const odometry::VioCon
     const odometry::FrameEstimate e = estimator.addFrame(s.frames[f]);
     r.frame_cpu_ms.push_back(threadCpuMs() - cpu_start);
     r.frame_ms.push_back(
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-            .count());
+        msSince(start));
     if (e.status == odometry::VioStatus::kTracking) {
       ++r.tracked;
       estimated.push_back({e.t_s, e.T_W_C});
@@ -61,7 +61,7 @@ RunResult runOnce(const odometry::synthetic::Scenario& s, const odometry::VioCon
     r.failed += e.status == odometry::VioStatus::kFailed;
   }
   if (estimated.size() >= 3) {
-    r.error = traj::evaluateTrajectory(estimated, truth, traj::Alignment::kSE3);
+    r.error = trajectory::evaluateTrajectory(estimated, truth, trajectory::Alignment::kSE3);
   } else {
     r.error.ate_rmse_m = 1e9;
   }

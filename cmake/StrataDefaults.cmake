@@ -14,17 +14,18 @@ function(strata_set_target_defaults target)
 endfunction()
 
 # strata_library(<target> <name> [ROOT <dir>] [NO_INSTALL]): the conventions of every library:
-# ALIAS strata::<name> (the exported name too), includes relative to ROOT (engine/ by default;
-# installed under include/strata), warnings, and a place in the installed package.
+# ALIAS strata::<name> (the exported name too), includes relative to ROOT (src/ by default, so
+# that every header is <strata/<capability>/...> in the tree; include/ after install), warnings,
+# and a place in the installed package. Libraries of the programs (apps/) pass ROOT and
+# NO_INSTALL.
 function(strata_library target name)
   cmake_parse_arguments(ARG "NO_INSTALL" "ROOT" "" ${ARGN})
   if(NOT ARG_ROOT)
-    set(ARG_ROOT "${PROJECT_SOURCE_DIR}/engine")
+    set(ARG_ROOT "${PROJECT_SOURCE_DIR}/src")
   endif()
   add_library(strata::${name} ALIAS ${target})
   set_target_properties(${target} PROPERTIES EXPORT_NAME ${name} POSITION_INDEPENDENT_CODE ON)
   target_include_directories(${target} PUBLIC $<BUILD_INTERFACE:${ARG_ROOT}>
-                                              $<INSTALL_INTERFACE:include/strata>
                                               $<INSTALL_INTERFACE:include>)
   strata_set_target_defaults(${target})
   if(NOT ARG_NO_INSTALL)

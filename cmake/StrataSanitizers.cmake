@@ -17,7 +17,7 @@ endif()
 if(STRATA_SANITIZE)
   # -O1 with line tables only, after the build type's flags (the last -O and -g win): the level
   # AddressSanitizer advises, reports still name file and line, and the whole tree compiles about
-  # a quarter faster than RelWithDebInfo's -O2 -g (25 s against 34 s for host/odometry/vio_window.cpp
+  # a quarter faster than RelWithDebInfo's -O2 -g (25 s against 34 s for src/strata/odometry/vio_window.cpp
   # with clang 14), which is most of the CI sanitizer stage's time.
   set(strata_sanitize_flags -fsanitize=address,undefined -fno-sanitize-recover=all
                             -fno-omit-frame-pointer -O1)

@@ -3,8 +3,8 @@
 #include <cstdio>
 #include <exception>
 
-#include "mapper/mapper.h"
-#include "vk/vk.h"
+#include "strata/mapper/mapper.h"
+#include "strata/vk/vk.h"
 
 namespace {
 

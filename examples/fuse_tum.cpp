@@ -5,11 +5,11 @@
 #include <exception>
 #include <string>
 
-#include "core/error.h"
-#include "io/dataset.h"
-#include "mapper/mapper.h"
-#include "mesh/ply.h"
-#include "vk/vk.h"
+#include "strata/core/error.h"
+#include "strata/io/open_dataset.h"
+#include "strata/mapper/mapper.h"
+#include "strata/mesh/ply.h"
+#include "strata/vk/vk.h"
 
 int main(int argc, char** argv) {
   if (argc < 2) {

@@ -5,15 +5,15 @@
 #include <fstream>
 #include <iostream>
 
-#include "io/euroc_writer.h"
-#include "io/image_io.h"
-#include "lcm/convert_frame.h"
-#include "lcm/convert_image.h"
-#include "lcm/convert_pose.h"
-#include "lcm/convert_stereo.h"
-#include "map/map_file.h"
-#include "mesh/ply.h"
-#include "objects/object_database_file.h"
+#include "strata/io/euroc_writer.h"
+#include "strata/io/image_io.h"
+#include "strata/lcm/convert_frame.h"
+#include "strata/lcm/convert_image.h"
+#include "strata/lcm/convert_pose.h"
+#include "strata/lcm/convert_stereo.h"
+#include "strata/map/map_file.h"
+#include "strata/mesh/ply.h"
+#include "strata/objects/object_database_file.h"
 #include "strata/command_t.hpp"
 
 namespace strata {

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <limits>
 
-#include "sim/default_scene.h"
-#include "sim/world/world_paths.h"
+#include "strata/sim/default_scene.h"
+#include "strata/sim/world/world_paths.h"
 
 namespace strata::test {
 

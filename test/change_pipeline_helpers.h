@@ -6,11 +6,11 @@
 #include <string>
 #include <vector>
 
-#include "change/change_detector.h"
-#include "io/dataset.h"
-#include "map/tsdf_map.h"
-#include "sim/analytic_dataset.h"
-#include "sim/world/world.h"
+#include "strata/change/change_detector.h"
+#include "strata/io/open_dataset.h"
+#include "strata/map/tsdf_map.h"
+#include "strata/sim/analytic_dataset.h"
+#include "strata/sim/world/world.h"
 
 namespace strata::test {
 

@@ -4,9 +4,9 @@
 #include <Eigen/Geometry>
 #include <functional>
 
-#include "change/change_types.h"
-#include "map/tsdf_map.h"
-#include "mesh/mesh.h"
+#include "strata/change/change_types.h"
+#include "strata/map/tsdf_map.h"
+#include "strata/mesh/mesh.h"
 
 namespace strata::test {
 

@@ -4,9 +4,10 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 
-#include "change/objects.h"
-#include "eval/object_db_eval.h"
+#include "strata/change/object_discovery.h"
+#include "strata/objects/eval/object_db_eval.h"
 #include "test_utils.h"
 
 namespace strata::test {
@@ -68,12 +69,14 @@ void expectRoomChangeTargets(const apps::DemoReport& report, std::size_t min_mov
   for (const auto& session : inc.images_per_session) fused += session.fused;
   EXPECT_EQ(inc.images_per_session.size(), e.sessions.size() - 1);
   EXPECT_EQ(fused, inc.images.fused);
-  for (const char* key : {"\"per_session\": [{\"fused\": ", "\"arrivals_incremental\": {",
-                          "\"instances\": [{\"session\": ", "\"carried_forward\": {",
-                          "\"free_space\": {\"skipped_keyframes\": ", "\"shared_samples\": ",
-                          "\"depth_pixels_kept\": ", "\"arrived_samples\": ",
-                          "\"free_voxel_observations\": ", "\"integration_s\": "}) {
-    EXPECT_NE(report.incremental_json.find(key), std::string::npos) << key;
+  const nlohmann::json incremental = nlohmann::json::parse(report.incremental_json);
+  for (const char* key :
+       {"/keyframes_after_first_session/per_session/0/fused", "/arrivals_incremental/recall",
+        "/instances/0/session", "/carried_forward/voxels", "/free_space/skipped_keyframes",
+        "/free_space/shared_samples", "/free_space/depth_pixels_kept",
+        "/free_space/arrived_samples", "/free_space/free_voxel_observations",
+        "/free_space/integration_s"}) {
+    EXPECT_TRUE(incremental.contains(nlohmann::json::json_pointer(key))) << key;
   }
   EXPECT_GE(inc.objects_incremental.found + 1, inc.objects_complete.found);
   EXPECT_GE(inc.objects_incremental.precision(), 0.99);
@@ -167,8 +170,8 @@ void expectRoomObjectTargets(const apps::DemoReport& report, const std::string& 
   EXPECT_LE(e.pose.median_rotation_deg, 2.0);
   EXPECT_LT(e.growth_max, 2.0) << "no model grows into a ball of merged shapes";
   const fs::path out(out_dir);
-  const std::string report_json = test::readText(out / "report.json");
-  EXPECT_NE(report_json.find("\"objects\": {\"models\": "), std::string::npos);
+  const nlohmann::json report_json = nlohmann::json::parse(test::readText(out / "report.json"));
+  EXPECT_TRUE(report_json.contains(nlohmann::json::json_pointer("/objects/models")));
   EXPECT_TRUE(fs::exists(out / "objects.json"));
   EXPECT_TRUE(fs::exists(out / "objects.sodb"));
   EXPECT_TRUE(fs::exists(out / "objects.png"));

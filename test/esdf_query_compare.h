@@ -5,8 +5,8 @@
 #include <optional>
 #include <vector>
 
-#include "esdf/esdf_query.h"
-#include "esdf/esdf_query_kernel.h"
+#include "strata/esdf/esdf_query.h"
+#include "strata/esdf/esdf_query_kernel.h"
 
 namespace strata::test {
 

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <limits>
 
-#include "map/tsdf_map.h"
+#include "strata/map/tsdf_map.h"
 
 namespace strata::test {
 namespace {

@@ -5,9 +5,9 @@
 #include <memory>
 #include <vector>
 
-#include "map/device_tsdf_map.h"
-#include "map/esdf_layer.h"
-#include "vk/vk.h"
+#include "strata/map/device_tsdf_map.h"
+#include "strata/map/esdf_layer.h"
+#include "strata/vk/vk.h"
 
 namespace strata::test {
 

@@ -1,6 +1,6 @@
 #include "fusion_fixture.h"
 
-#include "integrate/tsdf_integration.h"
+#include "strata/integrate/tsdf_integration.h"
 
 namespace strata::test {
 

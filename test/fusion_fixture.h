@@ -5,10 +5,10 @@
 
 #include <memory>
 
-#include "io/dataset.h"
-#include "integrate/device_fusion.h"
-#include "map/tsdf_map.h"
-#include "vk/vk.h"
+#include "strata/io/open_dataset.h"
+#include "strata/integrate/device_fusion.h"
+#include "strata/map/tsdf_map.h"
+#include "strata/vk/vk.h"
 
 namespace strata::test {
 

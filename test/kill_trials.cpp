@@ -9,9 +9,9 @@
 #include <random>
 #include <thread>
 
-#include "core/atomic_file.h"
+#include "strata/core/atomic_file.h"
 #include "lcm_process_helpers.h"
-#include "map/map_file.h"
+#include "strata/map/map_file.h"
 #include "save_watcher.h"
 
 namespace strata::test {

@@ -10,12 +10,12 @@
 #include <sstream>
 #include <unordered_map>
 
-#include "lcm/channels.h"
-#include "lcm/convert_frame.h"
-#include "lcm/convert_pose.h"
-#include "lcm/lcm_time.h"
+#include "strata/lcm/channels.h"
+#include "strata/lcm/convert_frame.h"
+#include "strata/lcm/convert_pose.h"
+#include "strata/lcm/lcm_time.h"
 #include "lcm_test_helpers.h"
-#include "map/block_index.h"
+#include "strata/map/block_index.h"
 
 namespace strata::test {
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "core/types.h"
+#include "strata/core/types.h"
 #include "strata/command_t.hpp"
 #include "strata/esdf_slice_t.hpp"
 #include "strata/map_stats_t.hpp"

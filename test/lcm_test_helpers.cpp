@@ -3,9 +3,9 @@
 #include <unordered_map>
 
 #include "fusion_fixture.h"
-#include "lcm/block_mesh_msg.h"
-#include "sim/world/world.h"
-#include "sim/world/world_paths.h"
+#include "strata/lcm/block_mesh_msg.h"
+#include "strata/sim/world/world.h"
+#include "strata/sim/world/world_paths.h"
 #include "strata/esdf_slice_t.hpp"
 
 namespace strata::test {

@@ -14,7 +14,7 @@
 #include "mapper_node/mapper_core.h"
 #include "mapper_node/mapper_node.h"
 #include "player/play_publisher.h"
-#include "sim/session/sim_session.h"
+#include "strata/sim/session/sim_session.h"
 #include "strata/change_event_t.hpp"
 #include "strata/keyframe_score_t.hpp"
 #include "strata/map_stats_t.hpp"

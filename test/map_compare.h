@@ -2,7 +2,7 @@
 // Voxel-by-voxel comparison of two TSDF maps (device vs reference, reader vs reader).
 #include <cstddef>
 
-#include "map/tsdf_map.h"
+#include "strata/map/tsdf_map.h"
 
 namespace strata::test {
 

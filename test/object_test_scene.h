@@ -5,9 +5,9 @@
 #include <Eigen/Geometry>
 #include <vector>
 
-#include "change/objects.h"
+#include "strata/change/object_discovery.h"
 #include "change_test_scene.h"
-#include "objects/object_database.h"
+#include "strata/objects/object_database.h"
 
 namespace strata::test {
 

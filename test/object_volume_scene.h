@@ -4,9 +4,9 @@
 // change::extractObjects.
 #include <Eigen/Geometry>
 
-#include "change/objects.h"
+#include "strata/change/object_discovery.h"
 #include "change_test_scene.h"
-#include "objects/object_observation.h"
+#include "strata/objects/object_observation.h"
 
 namespace strata::test {
 

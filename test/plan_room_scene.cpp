@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "change_test_scene.h"
-#include "esdf/esdf.h"
+#include "strata/esdf/esdf.h"
 
 namespace strata::test {
 namespace {

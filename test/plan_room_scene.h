@@ -5,8 +5,8 @@
 // and its exact ESDF (computeEsdfReference, max distance 1 m).
 #include <Eigen/Geometry>
 
-#include "map/esdf_layer.h"
-#include "map/tsdf_map.h"
+#include "strata/map/esdf_layer.h"
+#include "strata/map/tsdf_map.h"
 
 namespace strata::test {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "esdf/esdf.h"
+#include "strata/esdf/esdf.h"
 
 namespace strata::test {
 

@@ -7,8 +7,8 @@
 #include <functional>
 #include <vector>
 
-#include "map/esdf_layer.h"
-#include "map/tsdf_map.h"
+#include "strata/map/esdf_layer.h"
+#include "strata/map/tsdf_map.h"
 
 namespace strata::test {
 

@@ -5,7 +5,7 @@
 #include <fstream>
 #include <random>
 
-#include "store/sqlite_db.h"
+#include "strata/store/sqlite_db.h"
 
 namespace strata::test {
 

@@ -12,23 +12,20 @@
 #include <numeric>
 #include <random>
 
-#include "align/keyframe_features.h"
-#include "align/loop_verifier.h"
-#include "align/place_index.h"
-#include "core/error.h"
-#include "io/dataset.h"
-#include "sim/session/sim_session.h"
-#include "sim/world/world_paths.h"
+#include "strata/align/keyframe_features.h"
+#include "strata/align/loop_verifier.h"
+#include "strata/align/place_index.h"
+#include "strata/core/clock.h"
+#include "strata/core/error.h"
+#include "strata/io/open_dataset.h"
+#include "strata/sim/session/sim_session.h"
+#include "strata/sim/world/world_paths.h"
 #include "test_utils.h"
 
 namespace strata::align {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double msSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 // Redkitchen frames, loaded once per test program and kept with their features.
 class Redkitchen {

@@ -6,11 +6,11 @@
 #include <cmath>
 #include <random>
 
-#include "align/alignment_eval.h"
-#include "align/session_alignment.h"
-#include "core/error.h"
-#include "sim/session/sim_session.h"
-#include "sim/world/world_paths.h"
+#include "strata/align/alignment_eval.h"
+#include "strata/align/session_alignment.h"
+#include "strata/core/error.h"
+#include "strata/sim/session/sim_session.h"
+#include "strata/sim/world/world_paths.h"
 
 namespace strata::align {
 namespace {
@@ -43,19 +43,6 @@ OwnFrameSession makeSession(const std::shared_ptr<const sim::World>& world, int 
   return out;
 }
 
-AlignSession alignInput(const sim::SimSessionDataset& d) {
-  AlignSession s;
-  s.name = d.name();
-  s.frames = &d;
-  for (std::size_t i = 0; i < d.size(); ++i) {
-    const FrameStamp stamp = d.stamp(i);
-    s.frame_timestamps_s.push_back(stamp.timestamp_s);
-    s.frame_T_S_C.push_back(stamp.T_W_C);
-    s.keyframes.push_back(i);
-  }
-  return s;
-}
-
 SessionTruth truthOf(const sim::SimSessionDataset& d) {
   SessionTruth truth;
   for (const Eigen::Isometry3d& T : d.truePoses()) truth.push_back(T);
@@ -69,7 +56,7 @@ TEST(AlignSessions, RoomSessionsInTheirOwnDriftingFramesAreRegistered) {
   std::vector<SessionTruth> truth;
   for (int s = 0; s < 3; ++s) sessions.push_back(makeSession(world, s, 40, 100 + s));
   for (const OwnFrameSession& s : sessions) {
-    inputs.push_back(alignInput(*s.dataset));
+    inputs.push_back(sessionFromDataset(*s.dataset));
     truth.push_back(truthOf(*s.dataset));
   }
   AlignConfig config;
@@ -100,7 +87,7 @@ TEST(AlignSessions, ASessionOfAnotherWorldStaysUnalignedAndTheOthersAlign) {
   sessions.push_back(makeSession(warehouse, 0, 30, 8));
   sessions.push_back(makeSession(room, 1, 30, 9));
   std::vector<AlignSession> inputs;
-  for (const OwnFrameSession& s : sessions) inputs.push_back(alignInput(*s.dataset));
+  for (const OwnFrameSession& s : sessions) inputs.push_back(sessionFromDataset(*s.dataset));
   const AlignResult result = alignSessions(inputs);
   EXPECT_TRUE(result.sessions[0].aligned);
   EXPECT_FALSE(result.sessions[1].aligned);
@@ -116,7 +103,7 @@ TEST(AlignSessions, ASessionOfAnotherWorldStaysUnalignedAndTheOthersAlign) {
 TEST(AlignSessions, BadInputIsRefusedNamingTheSession) {
   const auto world = loadShipped("room");
   const OwnFrameSession session = makeSession(world, 0, 5, 1);
-  AlignSession input = alignInput(*session.dataset);
+  AlignSession input = sessionFromDataset(*session.dataset);
   EXPECT_THROW(alignSessions({}), InputError);
   AlignSession no_keyframes = input;
   no_keyframes.keyframes.clear();

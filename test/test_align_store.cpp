@@ -9,12 +9,12 @@
 #include <fstream>
 #include <sstream>
 
-#include "align/store_alignment.h"
+#include "strata/align/store_alignment.h"
 #include "cli/align_command.h"
-#include "core/error.h"
-#include "io/odometry_frame_file.h"
-#include "sim/session/drifted_session.h"
-#include "store/session_import.h"
+#include "strata/core/error.h"
+#include "strata/io/odometry_frame_file.h"
+#include "strata/sim/session/drifted_session.h"
+#include "strata/store/session_import.h"
 #include "store_test_helpers.h"
 #include "test_utils.h"
 
@@ -120,13 +120,6 @@ TEST(AlignStore, ASessionWhoseFolderIsGoneIsRefusedAndTheStoreKeptAsItWas) {
   fs::remove_all(split.root);
 }
 
-std::string readText(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 TEST(AlignCli, WritesTrajectoriesLoopsReportAndPictureAndScoresAgainstTheTruth) {
   STRATA_REQUIRE_DATA("redkitchen", kitchen);
   const SplitKitchen split = splitKitchen(kitchen, "align_cli");
@@ -141,13 +134,13 @@ TEST(AlignCli, WritesTrajectoriesLoopsReportAndPictureAndScoresAgainstTheTruth) 
                            "session_0/trajectory.txt", "session_1/trajectory.txt"}) {
     EXPECT_TRUE(fs::exists(out / file)) << file;
   }
-  const std::string report = readText(out / "report.json");
+  const std::string report = test::readText(out / "report.json");
   EXPECT_NE(report.find("\"aligned_sessions\": 2"), std::string::npos) << report;
   EXPECT_NE(report.find("\"loops_accepted_false\": 0"), std::string::npos) << report;
   // 75 frames per session, one line each after the header.
-  const std::string trajectory = readText(out / "session_1/trajectory.txt");
+  const std::string trajectory = test::readText(out / "session_1/trajectory.txt");
   EXPECT_EQ(std::count(trajectory.begin(), trajectory.end(), '\n'), 76);
-  const std::string loops = readText(out / "loops.csv");
+  const std::string loops = test::readText(out / "loops.csv");
   EXPECT_GT(std::count(loops.begin(), loops.end(), '\n'), 10);
   EXPECT_NE(loops.find("true_loop"), std::string::npos);  // scored against groundtruth.txt
 

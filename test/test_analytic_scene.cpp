@@ -6,12 +6,12 @@
 #include <filesystem>
 #include <string>
 
-#include "core/error.h"
-#include "io/dataset.h"
-#include "io/tum_writer.h"
-#include "sim/analytic_dataset.h"
-#include "sim/analytic_scene.h"
-#include "sim/default_scene.h"
+#include "strata/core/error.h"
+#include "strata/io/open_dataset.h"
+#include "strata/io/tum_writer.h"
+#include "strata/sim/analytic_dataset.h"
+#include "strata/sim/analytic_scene.h"
+#include "strata/sim/default_scene.h"
 
 namespace strata::sim {
 namespace {

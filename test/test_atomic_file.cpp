@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "core/atomic_file.h"
+#include "strata/core/atomic_file.h"
 
 namespace strata {
 namespace {

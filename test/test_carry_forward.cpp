@@ -8,11 +8,11 @@
 #include <algorithm>
 #include <cmath>
 
-#include "change/carry_forward.h"
-#include "change/change_detector.h"
-#include "change/objects.h"
+#include "strata/change/carry_forward.h"
+#include "strata/change/change_detector.h"
+#include "strata/change/object_discovery.h"
 #include "change_test_scene.h"
-#include "core/error.h"
+#include "strata/core/error.h"
 
 namespace strata::change {
 namespace {

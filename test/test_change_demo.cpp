@@ -5,17 +5,17 @@
 
 #include <filesystem>
 
-#include "change/objects.h"
+#include "strata/change/object_discovery.h"
 #include "change_test_scene.h"
 #include "cli/demo_command.h"
 #include "cli/demo_report.h"
 #include "cli/diff_command.h"
 #include "cli/diff_overlay.h"
 #include "cli/sim_command.h"
-#include "core/error.h"
+#include "strata/core/error.h"
 #include "demo_targets.h"
-#include "io/image_io.h"
-#include "mesh/ply.h"
+#include "strata/io/image_io.h"
+#include "strata/mesh/ply.h"
 
 namespace strata {
 namespace {

@@ -2,13 +2,13 @@
 // positive segments, the static map's completeness and ghosts, visibility from rendered frames.
 #include <gtest/gtest.h>
 
-#include "eval/evaluation.h"
-#include "eval/evaluation_truth.h"
-#include "eval/evaluation_visibility.h"
-#include "eval/evaluation_world.h"
+#include "strata/change/eval/evaluation.h"
+#include "strata/change/eval/evaluation_truth.h"
+#include "strata/change/eval/evaluation_visibility.h"
+#include "strata/change/eval/evaluation_world.h"
 #include "change_test_scene.h"
-#include "core/error.h"
-#include "sim/world/world_paths.h"
+#include "strata/core/error.h"
+#include "strata/sim/world/world_paths.h"
 
 namespace strata::change {
 namespace {

@@ -5,11 +5,11 @@
 #include <cmath>
 
 #include "change_pipeline_helpers.h"
-#include "core/error.h"
+#include "strata/core/error.h"
 #include "fusion_fixture.h"
-#include "change/change_device.h"
-#include "integrate/device_fusion.h"
-#include "esdf/esdf.h"
+#include "strata/change/change_device.h"
+#include "strata/integrate/device_fusion.h"
+#include "strata/esdf/esdf.h"
 #include "map_compare.h"
 
 namespace strata {

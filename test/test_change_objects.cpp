@@ -4,11 +4,11 @@
 
 #include <algorithm>
 
-#include "change/change_detector.h"
-#include "change/objects.h"
-#include "change/region_growing.h"
+#include "strata/change/change_detector.h"
+#include "strata/change/object_discovery.h"
+#include "strata/change/region_growing.h"
 #include "change_test_scene.h"
-#include "core/error.h"
+#include "strata/core/error.h"
 
 namespace strata::change {
 namespace {

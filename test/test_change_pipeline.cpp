@@ -8,10 +8,10 @@
 
 #include "change_pipeline_helpers.h"
 #include "fusion_fixture.h"
-#include "change/change_device.h"
-#include "change/change_reference.h"
-#include "integrate/device_fusion.h"
-#include "sim/session/sim_session.h"
+#include "strata/change/change_device.h"
+#include "strata/change/change_reference.h"
+#include "strata/integrate/device_fusion.h"
+#include "strata/sim/session/sim_session.h"
 
 namespace strata {
 namespace {

@@ -7,9 +7,9 @@
 
 #include <cmath>
 
-#include "core/error.h"
-#include "select/changed_views.h"
-#include "select/confirmed_points.h"
+#include "strata/core/error.h"
+#include "strata/select/changed_views.h"
+#include "strata/select/confirmed_points.h"
 
 namespace strata::selection {
 namespace {

@@ -10,12 +10,12 @@
 #include <utility>
 
 #include "cli/fuse_command.h"
-#include "core/atomic_file.h"
-#include "core/file_faults.h"
-#include "io/image_io.h"
-#include "io/tum_writer.h"
-#include "map/map_file.h"
-#include "sim/analytic_dataset.h"
+#include "strata/core/atomic_file.h"
+#include "strata/core/file_faults.h"
+#include "strata/io/image_io.h"
+#include "strata/io/tum_writer.h"
+#include "strata/map/map_file.h"
+#include "strata/sim/analytic_dataset.h"
 
 namespace strata {
 namespace {

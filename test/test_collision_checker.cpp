@@ -6,11 +6,11 @@
 #include <cmath>
 #include <random>
 
-#include "esdf/esdf.h"
+#include "strata/esdf/esdf.h"
 #include "fusion_fixture.h"
-#include "map/device_tsdf_map.h"
-#include "plan/collision_checker.h"
-#include "plan/rrt_planner.h"
+#include "strata/map/device_tsdf_map.h"
+#include "strata/plan/collision_checker.h"
+#include "strata/plan/rrt_planner.h"
 #include "plan_test_scene.h"
 
 namespace strata::plan {

@@ -10,12 +10,12 @@
 #include <iterator>
 #include <string>
 
-#include "core/error.h"
+#include "strata/core/error.h"
 #include "fusion_fixture.h"
-#include "integrate/block_allocation.h"
-#include "mapper/mapper.h"
-#include "sim/analytic_dataset.h"
-#include "vk/fault_injection.h"
+#include "strata/integrate/block_allocation.h"
+#include "strata/mapper/mapper.h"
+#include "strata/sim/analytic_dataset.h"
+#include "strata/vk/fault_injection.h"
 
 namespace strata {
 namespace {

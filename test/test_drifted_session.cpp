@@ -9,12 +9,12 @@
 
 #include "cli/diff_command.h"
 #include "cli/drift_command.h"
-#include "core/error.h"
-#include "io/dataset.h"
-#include "io/odometry_frame_file.h"
-#include "io/tum_format.h"
-#include "io/tum_writer.h"
-#include "sim/session/drifted_session.h"
+#include "strata/core/error.h"
+#include "strata/io/open_dataset.h"
+#include "strata/io/odometry_frame_file.h"
+#include "strata/io/tum_format.h"
+#include "strata/io/tum_writer.h"
+#include "strata/sim/session/drifted_session.h"
 #include "test_utils.h"
 
 namespace strata::sim {

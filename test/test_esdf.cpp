@@ -10,18 +10,15 @@
 #include <string>
 
 #include "fusion_fixture.h"
-#include "esdf/esdf.h"
-#include "sim/analytic_dataset.h"
-#include "sim/default_scene.h"
-#include "sim/session/sim_session.h"
-#include "sim/world/world_paths.h"
+#include "strata/esdf/esdf.h"
+#include "strata/esdf/esdf_compare.h"
+#include "strata/sim/analytic_dataset.h"
+#include "strata/sim/default_scene.h"
+#include "strata/sim/session/sim_session.h"
+#include "strata/sim/world/world_paths.h"
 
 namespace strata {
 namespace {
-
-/// The ESDF's tolerances: share of compared voxels off by more than one voxel, mean error (voxels).
-constexpr double kMaxShareOverVoxel = 0.002;
-constexpr double kMaxMeanErrorVoxels = 0.1;
 
 struct EsdfDiff {
   std::uint64_t compared = 0, over_voxel = 0, flag_mismatches = 0;
@@ -38,8 +35,9 @@ struct EsdfDiff {
 
 void expectWithinTolerance(const EsdfDiff& d, const std::string& what) {
   EXPECT_GT(d.compared, 1000u) << what;
-  EXPECT_LE(d.share(), kMaxShareOverVoxel) << what << ": " << d.over_voxel << " of " << d.compared;
-  EXPECT_LT(d.mean(), kMaxMeanErrorVoxels) << what;
+  EXPECT_LE(d.share(), kEsdfMaxShareOverVoxel)
+      << what << ": " << d.over_voxel << " of " << d.compared;
+  EXPECT_LT(d.mean(), kEsdfMaxMeanErrorVoxels) << what;
   EXPECT_EQ(d.flag_mismatches, 0u) << what;
 }
 

@@ -8,7 +8,7 @@
 #include <thread>
 
 #include "esdf_sphere_scene.h"
-#include "esdf/esdf_query.h"
+#include "strata/esdf/esdf_query.h"
 
 namespace strata {
 namespace {

@@ -8,9 +8,9 @@
 #include "cli/esdf_command.h"
 #include "cli/esdf_slice.h"
 #include "cli/fuse_command.h"
-#include "core/error.h"
+#include "strata/core/error.h"
 #include "esdf_sphere_scene.h"
-#include "io/image_io.h"
+#include "strata/io/image_io.h"
 
 namespace strata {
 namespace {

@@ -9,9 +9,9 @@
 #include "esdf_query_compare.h"
 #include "esdf_sphere_scene.h"
 #include "fusion_fixture.h"
-#include "esdf/esdf.h"
-#include "esdf/esdf_query_kernel.h"
-#include "sim/analytic_dataset.h"
+#include "strata/esdf/esdf.h"
+#include "strata/esdf/esdf_query_kernel.h"
+#include "strata/sim/analytic_dataset.h"
 
 namespace strata {
 namespace {

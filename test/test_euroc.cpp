@@ -7,11 +7,11 @@
 #include <filesystem>
 #include <fstream>
 
-#include "core/error.h"
-#include "io/euroc_dataset.h"
-#include "io/euroc_parse.h"
-#include "io/euroc_writer.h"
-#include "io/image_io.h"
+#include "strata/core/error.h"
+#include "strata/io/euroc_dataset.h"
+#include "strata/io/euroc_parse.h"
+#include "strata/io/euroc_writer.h"
+#include "strata/io/image_io.h"
 #include "test_utils.h"
 
 namespace strata::euroc {

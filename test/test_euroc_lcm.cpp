@@ -6,12 +6,12 @@
 #include <filesystem>
 #include <lcm/lcm-cpp.hpp>
 
-#include "core/error.h"
-#include "io/euroc_dataset.h"
-#include "io/euroc_writer.h"
-#include "lcm/channels.h"
-#include "lcm/convert_frame.h"
-#include "lcm/convert_stereo.h"
+#include "strata/core/error.h"
+#include "strata/io/euroc_dataset.h"
+#include "strata/io/euroc_writer.h"
+#include "strata/lcm/channels.h"
+#include "strata/lcm/convert_frame.h"
+#include "strata/lcm/convert_stereo.h"
 #include "player/play_euroc.h"
 #include "test_utils.h"
 

@@ -8,16 +8,16 @@
 #include <lcm/lcm-cpp.hpp>
 
 #include "cli/sim_command.h"
-#include "cli/sim_setup.h"
-#include "io/euroc_dataset.h"
-#include "io/tum_format.h"
-#include "lcm/channels.h"
+#include "strata/sim/sim_setup.h"
+#include "strata/io/euroc_dataset.h"
+#include "strata/io/tum_format.h"
+#include "strata/lcm/channels.h"
 #include "player/play_run.h"
-#include "odometry/pipeline/vio_replay.h"
-#include "sim/primitives.h"
-#include "sim/sensors/analytic_ray_scene.h"
-#include "sim/sensors/grey_camera.h"
-#include "sim/session/stereo_recording.h"
+#include "strata/odometry/pipeline/vio_replay.h"
+#include "strata/sim/primitives.h"
+#include "strata/sim/sensors/analytic_ray_scene.h"
+#include "strata/sim/sensors/grey_camera.h"
+#include "strata/sim/session/stereo_recording.h"
 
 namespace strata::euroc {
 namespace {
@@ -110,8 +110,8 @@ TEST_F(EurocSim, CalibrationAloneReadsAsTheReaderDoes) {
 
 TEST_F(EurocSim, TruthIsTheRgbdTrajectoryThroughTheMounting) {
   const EurocDataset d = EurocDataset::open(session().string());
-  const auto world = apps::loadWorld("", 0, 1);
-  const sim::SimSessionDataset sim_session(world, 0, apps::sessionConfig(30.0, 2, true, false));
+  const auto world = sim::loadWorld("", 0, 1);
+  const sim::SimSessionDataset sim_session(world, 0, sim::sessionConfig(30.0, 2, true, false));
   const Eigen::Isometry3d T_B_C0 = d.calibration().cameras[0].T_B_C;
   double worst_m = 0.0;
   for (const GroundTruthState& s : d.groundTruth()) {
@@ -140,9 +140,9 @@ TEST_F(EurocSim, TruthIsTheRgbdTrajectoryThroughTheMounting) {
 // times, IMU samples, truth and images.
 TEST_F(EurocSim, InMemoryRecordingIsWhatWasWritten) {
   const EurocDataset d = EurocDataset::open(session().string());
-  const auto world = apps::loadWorld("", 0, 1);
-  const sim::SimSessionDataset sim_session(world, 0, apps::sessionConfig(30.0, 2, true, false));
-  sim::StereoRecordingConfig config = apps::stereoRecordingConfig(160, 120, true);
+  const auto world = sim::loadWorld("", 0, 1);
+  const sim::SimSessionDataset sim_session(world, 0, sim::sessionConfig(30.0, 2, true, false));
+  sim::StereoRecordingConfig config = sim::stereoRecordingConfig(160, 120, true);
   config.duration_s = 1.0;
   const sim::StereoRecording recording(sim_session, config);
   ASSERT_EQ(recording.frameTimestamps().size(), d.frames().size());

@@ -7,13 +7,13 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/error.h"
-#include "eval/exploration_truth.h"
-#include "sim/world/shape_mesh.h"
-#include "sim/world/world.h"
-#include "sim/world/world_paths.h"
+#include "strata/core/error.h"
+#include "strata/explore/reachable_space.h"
+#include "strata/sim/world/shape_mesh.h"
+#include "strata/sim/world/world.h"
+#include "strata/sim/world/world_paths.h"
 
-namespace strata::eval {
+namespace strata::explore {
 namespace {
 
 const sim::World& room() {
@@ -175,4 +175,4 @@ TEST(ExplorationTruth, BadInputIsAnInputError) {
 }
 
 }  // namespace
-}  // namespace strata::eval
+}  // namespace strata::explore

@@ -6,12 +6,12 @@
 #include <limits>
 
 #include "cli/explore_command.h"
-#include "explore/exploration_loop.h"
-#include "explore/history_planner.h"
-#include "explore/nbvp_planner.h"
+#include "strata/explore/exploration_loop.h"
+#include "strata/explore/history_planner.h"
+#include "strata/explore/nbvp_planner.h"
 #include "fusion_fixture.h"
-#include "sim/world/world.h"
-#include "sim/world/world_paths.h"
+#include "strata/sim/world/world.h"
+#include "strata/sim/world/world_paths.h"
 #include "test_utils.h"
 
 namespace strata::explore {

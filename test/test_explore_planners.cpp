@@ -6,12 +6,12 @@
 #include <cmath>
 #include <set>
 
-#include "core/error.h"
-#include "explore/dead_end.h"
-#include "explore/history_graph.h"
-#include "explore/history_planner.h"
-#include "explore/nbvp_planner.h"
-#include "explore/robot_model.h"
+#include "strata/core/error.h"
+#include "strata/explore/dead_end.h"
+#include "strata/explore/history_graph.h"
+#include "strata/explore/history_planner.h"
+#include "strata/explore/nbvp_planner.h"
+#include "strata/explore/robot_model.h"
 
 namespace strata::explore {
 namespace {

@@ -6,8 +6,8 @@
 #include <thread>
 #include <vector>
 
-#include "core/file_faults.h"
-#include "vk/fault_injection.h"
+#include "strata/core/file_faults.h"
+#include "strata/vk/fault_injection.h"
 
 namespace strata {
 namespace {

@@ -13,12 +13,12 @@
 #include <iterator>
 #include <string>
 
-#include "core/atomic_file.h"
-#include "core/error.h"
-#include "core/file_faults.h"
-#include "map/map_file.h"
-#include "mesh/extract_mesh.h"
-#include "mesh/ply.h"
+#include "strata/core/atomic_file.h"
+#include "strata/core/error.h"
+#include "strata/core/file_faults.h"
+#include "strata/map/map_file.h"
+#include "strata/mesh/extract_mesh.h"
+#include "strata/mesh/ply.h"
 
 namespace strata {
 namespace {

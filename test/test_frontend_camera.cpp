@@ -5,11 +5,11 @@
 #include <random>
 #include <vector>
 
-#include "core/error.h"
-#include "odometry/frontend/camera.h"
-#include "odometry/frontend/geometric_check.h"
-#include "odometry/frontend/keyframe_policy.h"
-#include "odometry/frontend/stereo_matcher.h"
+#include "strata/core/error.h"
+#include "strata/odometry/frontend/camera.h"
+#include "strata/odometry/frontend/geometric_check.h"
+#include "strata/odometry/frontend/keyframe_policy.h"
+#include "strata/odometry/frontend/stereo_matcher.h"
 
 namespace strata::odometry {
 namespace {

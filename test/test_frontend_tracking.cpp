@@ -14,10 +14,11 @@
 #include <string>
 #include <vector>
 
-#include "core/error.h"
-#include "odometry/frontend/feature_tracker.h"
-#include "sim/sensors/analytic_ray_scene.h"
-#include "sim/sensors/grey_camera.h"
+#include "strata/core/error.h"
+#include "strata/odometry/frontend/feature_tracker.h"
+#include "strata/sim/default_scene.h"
+#include "strata/sim/sensors/analytic_ray_scene.h"
+#include "strata/sim/sensors/grey_camera.h"
 #include "test_utils.h"
 
 namespace strata::odometry {
@@ -29,24 +30,6 @@ namespace {
 
 constexpr int kWidth = 752, kHeight = 480, kFrames = 12;
 constexpr double kFocal = 460.0, kBaseline = 0.11;
-
-sim::AnalyticRayScene makeRoom() {
-  sim::AnalyticRayScene scene(2);
-  using V = Eigen::Vector3d;
-  scene.add(sim::Plane{V(0, 0, 0), V(0, 0, 1), {150, 140, 130}});   // floor
-  scene.add(sim::Plane{V(0, 0, 3), V(0, 0, -1), {200, 200, 200}});  // ceiling
-  scene.add(sim::Plane{V(0, 4, 0), V(0, -1, 0), {180, 170, 160}});  // wall ahead
-  scene.add(sim::Plane{V(0, -4, 0), V(0, 1, 0), {180, 170, 160}});
-  scene.add(sim::Plane{V(3, 0, 0), V(-1, 0, 0), {160, 180, 170}});
-  scene.add(sim::Plane{V(-3, 0, 0), V(1, 0, 0), {160, 180, 170}});
-  scene.add(
-      sim::Box{V(-0.6, 1.5, 0.5), V(0.3, 0.3, 0.5), Eigen::Matrix3d::Identity(), {90, 110, 200}});
-  scene.add(sim::Box{V(0.9, 2.2, 1.2),
-                     V(0.4, 0.25, 0.3),
-                     Eigen::AngleAxisd(0.5, V::UnitZ()).matrix(),
-                     {210, 120, 90}});
-  return scene;
-}
 
 // Left-eye pose of frame k: camera z along world +y, x along +x, y down (-z).
 Eigen::Isometry3d leftPose(int k) {
@@ -85,7 +68,7 @@ cv::Mat toMat(const sim::GreyImage& image) {
 }
 
 struct SimSequence {
-  sim::AnalyticRayScene scene = makeRoom();
+  sim::AnalyticRayScene scene = sim::makeStereoTestRoom(2);
   std::vector<cv::Mat> left, right;
 };
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "core/error.h"
+#include "strata/core/error.h"
 #include "parser_entries.h"
 
 namespace strata {

@@ -11,18 +11,18 @@
 #include <string>
 #include <vector>
 
-#include "core/error.h"
-#include "core/image_limits.h"
-#include "io/camera_model.h"
-#include "io/image_io.h"
-#include "io/seven_scenes_dataset.h"
-#include "io/tum_format.h"
-#include "lcm/convert_frame.h"
-#include "lcm/convert_image.h"
-#include "map/map_file.h"
-#include "mesh/mesh_file_limits.h"
-#include "mesh/ply.h"
-#include "sim/world/mesh_file.h"
+#include "strata/core/error.h"
+#include "strata/core/image_limits.h"
+#include "strata/io/camera_model.h"
+#include "strata/io/image_io.h"
+#include "strata/io/seven_scenes_dataset.h"
+#include "strata/io/tum_format.h"
+#include "strata/lcm/convert_frame.h"
+#include "strata/lcm/convert_image.h"
+#include "strata/map/map_file.h"
+#include "strata/mesh/mesh_file_limits.h"
+#include "strata/mesh/ply.h"
+#include "strata/sim/world/mesh_file.h"
 
 namespace strata {
 namespace {

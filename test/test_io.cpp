@@ -8,11 +8,11 @@
 #include <functional>
 #include <string>
 
-#include "core/error.h"
-#include "io/dataset.h"
-#include "io/image_io.h"
-#include "io/tum_format.h"
-#include "io/tum_writer.h"
+#include "strata/core/error.h"
+#include "strata/io/open_dataset.h"
+#include "strata/io/image_io.h"
+#include "strata/io/tum_format.h"
+#include "strata/io/tum_writer.h"
 #include "test_utils.h"
 
 namespace strata {

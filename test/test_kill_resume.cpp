@@ -14,11 +14,11 @@
 #include <sstream>
 #include <thread>
 
-#include "core/atomic_file.h"
-#include "lcm/channels.h"
+#include "strata/core/atomic_file.h"
+#include "strata/lcm/channels.h"
 #include "lcm_process_helpers.h"
 #include "lcm_test_helpers.h"
-#include "map/map_file.h"
+#include "strata/map/map_file.h"
 #include "map_compare.h"
 #include "strata/command_t.hpp"
 

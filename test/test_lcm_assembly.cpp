@@ -5,15 +5,15 @@
 #include <algorithm>
 #include <array>
 
-#include "core/error.h"
-#include "esdf/esdf.h"
-#include "integrate/tsdf_integration.h"
-#include "lcm/block_mesh_msg.h"
-#include "lcm/esdf_slice_msg.h"
-#include "lcm/frame_assembler.h"
-#include "lcm/frame_queue.h"
-#include "mesh/extract_mesh.h"
-#include "sim/analytic_dataset.h"
+#include "strata/core/error.h"
+#include "strata/esdf/esdf.h"
+#include "strata/integrate/tsdf_integration.h"
+#include "strata/lcm/block_mesh_msg.h"
+#include "strata/lcm/esdf_slice_msg.h"
+#include "strata/lcm/frame_assembler.h"
+#include "strata/lcm/frame_queue.h"
+#include "strata/mesh/extract_mesh.h"
+#include "strata/sim/analytic_dataset.h"
 
 namespace strata::lcm_io {
 namespace {

@@ -7,11 +7,11 @@
 #include <filesystem>
 #include <random>
 
-#include "core/atomic_file.h"
-#include "lcm/channels.h"
-#include "lcm/convert_frame.h"
-#include "lcm/convert_pose.h"
-#include "lcm/lcm_time.h"
+#include "strata/core/atomic_file.h"
+#include "strata/lcm/channels.h"
+#include "strata/lcm/convert_frame.h"
+#include "strata/lcm/convert_pose.h"
+#include "strata/lcm/lcm_time.h"
 #include "lcm_test_helpers.h"
 #include "strata/camera_info_t.hpp"
 

@@ -6,29 +6,22 @@
 #include <filesystem>
 
 #include "cli/fuse_command.h"
-#include "core/atomic_file.h"
-#include "io/dataset.h"
-#include "io/tum_writer.h"
-#include "lcm/channels.h"
-#include "lcm/convert_frame.h"
-#include "lcm/convert_pose.h"
-#include "lcm/lcm_time.h"
+#include "strata/core/atomic_file.h"
+#include "strata/io/open_dataset.h"
+#include "strata/io/tum_writer.h"
+#include "strata/lcm/channels.h"
+#include "strata/lcm/convert_frame.h"
+#include "strata/lcm/convert_pose.h"
+#include "strata/lcm/lcm_time.h"
 #include "lcm_test_helpers.h"
-#include "map/map_file.h"
-#include "mesh/extract_mesh.h"
+#include "strata/map/map_file.h"
+#include "strata/mesh/extract_mesh.h"
+#include "test_utils.h"
 
 namespace strata::test {
 namespace {
 
 namespace fs = std::filesystem;
-
-fs::path freshDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() /
-                       ("strata_test_lcm_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
 
 map_stats_t waitForFused(InProcessMapper& mapper, std::int64_t frames) {
   const bool done = InProcessMapper::waitFor([&] {
@@ -61,7 +54,7 @@ apps::FramePublisher publisherFor(InProcessMapper& mapper, const std::string& de
 
 TEST(LcmMapper, FusesTheSameVoxelsAsStrataFuseAndItsMeshUpdatesAreComplete) {
   constexpr int kFrames = 20;
-  const fs::path dir = freshDir("same_voxels");
+  const fs::path dir = freshTempDir("lcm_same_voxels");
   {
     const auto session = roomSession(0, kFrames);
     TumWriter writer((dir / "session").string(), session->intrinsics());
@@ -135,7 +128,7 @@ TEST(LcmMapper, BackpressureDropsTheOldestFramesAndKeepsTheNewest) {
 }
 
 TEST(LcmMapper, CommandsSaveRequestTheMeshAndReportFailuresWithoutStopping) {
-  const fs::path dir = freshDir("commands");
+  const fs::path dir = freshTempDir("lcm_commands");
   InProcessMapper mapper(testMapperOptions());
   apps::FramePublisher publisher = publisherFor(mapper, "depth32f");
   EXPECT_EQ(runCommand(mapper, publisher, command_t::STOP_SESSION), "error: no session is open");

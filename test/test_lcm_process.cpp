@@ -14,14 +14,14 @@
 #include <sstream>
 #include <thread>
 
-#include "lcm/convert_frame.h"
-#include "lcm/convert_pose.h"
-#include "lcm/lcm_time.h"
+#include "strata/lcm/convert_frame.h"
+#include "strata/lcm/convert_pose.h"
+#include "strata/lcm/lcm_time.h"
 #include "lcm_process_helpers.h"
 #include "lcm_test_helpers.h"
-#include "map/map_file.h"
-#include "mesh/extract_mesh.h"
-#include "sim/session/sim_session.h"
+#include "strata/map/map_file.h"
+#include "strata/mesh/extract_mesh.h"
+#include "strata/sim/session/sim_session.h"
 #include "strata/map_stats_t.hpp"
 #include "strata/mesh_update_t.hpp"
 

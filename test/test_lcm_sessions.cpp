@@ -9,12 +9,12 @@
 #include <iterator>
 #include <set>
 
-#include "core/error.h"
+#include "strata/core/error.h"
 #include "fusion_fixture.h"
-#include "lcm/lcm_time.h"
+#include "strata/lcm/lcm_time.h"
 #include "lcm_test_helpers.h"
-#include "objects/object_database.h"
-#include "objects/object_database_file.h"
+#include "strata/objects/object_database.h"
+#include "strata/objects/object_database_file.h"
 #include "test_utils.h"
 
 namespace strata::test {

@@ -6,10 +6,10 @@
 #include <lcm/lcm-cpp.hpp>
 #include <vector>
 
-#include "core/error.h"
-#include "lcm/convert_frame.h"
-#include "lcm/convert_image.h"
-#include "lcm/convert_pose.h"
+#include "strata/core/error.h"
+#include "strata/lcm/convert_frame.h"
+#include "strata/lcm/convert_image.h"
+#include "strata/lcm/convert_pose.h"
 #include "strata/change_event_t.hpp"
 #include "strata/command_t.hpp"
 #include "strata/esdf_slice_t.hpp"

@@ -4,7 +4,7 @@
 #include <cstdlib>
 #include <sstream>
 
-#include "vk/vk.h"
+#include "strata/vk/vk.h"
 
 namespace {
 

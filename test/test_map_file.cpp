@@ -3,12 +3,12 @@
 
 #include <filesystem>
 
-#include "core/atomic_file.h"
-#include "core/error.h"
+#include "strata/core/atomic_file.h"
+#include "strata/core/error.h"
 #include "fusion_fixture.h"
-#include "map/map_file.h"
+#include "strata/map/map_file.h"
 #include "map_compare.h"
-#include "sim/analytic_dataset.h"
+#include "strata/sim/analytic_dataset.h"
 
 namespace strata {
 namespace {

@@ -4,8 +4,8 @@
 
 #include <memory>
 
-#include "core/error.h"
-#include "eval/map_history.h"
+#include "strata/core/error.h"
+#include "strata/select/eval/map_history.h"
 
 namespace strata::selection {
 namespace {

@@ -10,17 +10,17 @@
 #include <fstream>
 #include <iterator>
 
-#include "change/change_detector.h"
+#include "strata/change/change_detector.h"
 #include "change_pipeline_helpers.h"
-#include "core/error.h"
-#include "eval/accuracy.h"
+#include "strata/core/error.h"
+#include "strata/mapper/eval/accuracy.h"
 #include "fusion_fixture.h"
-#include "io/dataset.h"
-#include "map/map_file.h"
+#include "strata/io/open_dataset.h"
+#include "strata/map/map_file.h"
 #include "map_compare.h"
-#include "mapper/mapper.h"
-#include "mesh/extract_mesh.h"
-#include "sim/analytic_dataset.h"
+#include "strata/mapper/mapper.h"
+#include "strata/mesh/extract_mesh.h"
+#include "strata/sim/analytic_dataset.h"
 #include "test_utils.h"
 
 namespace strata {

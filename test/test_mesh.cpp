@@ -13,11 +13,11 @@
 #include <set>
 #include <tuple>
 
-#include "core/error.h"
-#include "mesh/extract_mesh.h"
-#include "mesh/mc_table.h"
-#include "mesh/mesh_metrics.h"
-#include "mesh/ply.h"
+#include "strata/core/error.h"
+#include "strata/mesh/extract_mesh.h"
+#include "strata/mesh/mc_table.h"
+#include "strata/mesh/mesh_metrics.h"
+#include "strata/mesh/ply.h"
 
 namespace strata {
 namespace {

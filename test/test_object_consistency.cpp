@@ -7,11 +7,11 @@
 #include <iostream>
 #include <random>
 
-#include "core/error.h"
+#include "strata/core/error.h"
 #include "object_volume_scene.h"
-#include "objects/consistency_check.h"
-#include "objects/object_model.h"
-#include "objects/object_prefilter.h"
+#include "strata/objects/consistency_check.h"
+#include "strata/objects/object_model.h"
+#include "strata/objects/object_prefilter.h"
 
 namespace strata::objects {
 namespace {

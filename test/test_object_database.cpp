@@ -7,9 +7,9 @@
 #include <cmath>
 
 #include "change_test_scene.h"
-#include "core/error.h"
+#include "strata/core/error.h"
 #include "object_test_scene.h"
-#include "objects/object_database.h"
+#include "strata/objects/object_database.h"
 
 namespace strata::objects {
 namespace {

@@ -7,12 +7,12 @@
 #include <filesystem>
 #include <functional>
 
-#include "core/atomic_file.h"
-#include "core/error.h"
-#include "core/file_faults.h"
+#include "strata/core/atomic_file.h"
+#include "strata/core/error.h"
+#include "strata/core/file_faults.h"
 #include "object_test_scene.h"
-#include "objects/object_database_file.h"
-#include "store/session_store.h"
+#include "strata/objects/object_database_file.h"
+#include "strata/store/session_store.h"
 #include "test_utils.h"
 
 namespace strata::objects {

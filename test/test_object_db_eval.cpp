@@ -4,10 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <nlohmann/json.hpp>
 
-#include "core/error.h"
-#include "eval/object_db_eval.h"
-#include "sim/world/shape_mesh.h"
+#include "strata/core/error.h"
+#include "strata/objects/eval/object_db_eval.h"
+#include "strata/sim/world/shape_mesh.h"
 
 namespace strata {
 namespace {
@@ -148,7 +149,7 @@ TEST(ObjectDbEval, PerfectDatabaseScoresPerfectly) {
   EXPECT_EQ(e.completeness_models, 4u);
   EXPECT_GT(e.growth_max, 1.0);
   const std::string json = eval::objectDbEvaluationJson(e);
-  EXPECT_NE(json.find("\"precision\": 1"), std::string::npos) << json;
+  EXPECT_EQ(nlohmann::json::parse(json).at("pairs").at("precision"), 1.0) << json;
   EXPECT_NE(eval::describeObjectDbEvaluation(e).find("precision 100.0 % (12/12)"),
             std::string::npos);
 }
@@ -265,7 +266,8 @@ TEST(ObjectDbEval, FalsePositiveSegmentInAModelIsWrong) {
   EXPECT_EQ(last.segment_id, 9);
   EXPECT_EQ(last.object_id, 0);
   EXPECT_EQ(last.model_id, 1);
-  EXPECT_NE(eval::objectDbEvaluationJson(e).find("[2, 9, 0, 1]"), std::string::npos);
+  EXPECT_EQ(nlohmann::json::parse(eval::objectDbEvaluationJson(e)).at("segments_as").back(),
+            nlohmann::json({2, 9, 0, 1}));
 }
 
 TEST(ObjectDbEval, BadInputIsNamed) {

@@ -8,9 +8,9 @@
 #include <map>
 #include <random>
 
-#include "core/error.h"
-#include "objects/object_registration.h"
-#include "sim/world/shape_mesh.h"
+#include "strata/core/error.h"
+#include "strata/objects/object_registration.h"
+#include "strata/sim/world/shape_mesh.h"
 
 namespace strata::objects {
 namespace {

@@ -8,11 +8,11 @@
 #include <map>
 #include <tuple>
 
-#include "core/error.h"
-#include "mesh/extract_mesh.h"
+#include "strata/core/error.h"
+#include "strata/mesh/extract_mesh.h"
 #include "object_volume_scene.h"
-#include "objects/object_model.h"
-#include "objects/object_observation.h"
+#include "strata/objects/object_model.h"
+#include "strata/objects/object_observation.h"
 
 namespace strata::objects {
 namespace {

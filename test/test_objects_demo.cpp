@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "cli/demo_command.h"
@@ -11,9 +12,9 @@
 #include "cli/objects_command.h"
 #include "cli/sim_command.h"
 #include "demo_targets.h"
-#include "io/image_io.h"
-#include "mesh/ply.h"
-#include "objects/object_database_file.h"
+#include "strata/io/image_io.h"
+#include "strata/mesh/ply.h"
+#include "strata/objects/object_database_file.h"
 #include "test_utils.h"
 
 namespace strata {
@@ -83,10 +84,13 @@ TEST(ObjectsCommand, SimulatedSessionsWriteEveryOutputAndTheirScore) {
   std::printf("[ objects ] %s\n", summary.c_str());
   EXPECT_NE(summary.find("against the truth of world 'room'"), std::string::npos) << summary;
   const fs::path out(options.out_dir);
-  const std::string json = test::readText(out / "objects.json");
-  for (const char* key : {"\"models\": [", "\"segments\": [", "\"truth\": {", "\"precision\": ",
-                          "\"T_W_O\": [[", "\"centroid_m\": [", "\"match_score\": "}) {
-    EXPECT_NE(json.find(key), std::string::npos) << key;
+  const nlohmann::json json = nlohmann::json::parse(test::readText(out / "objects.json"));
+  EXPECT_TRUE(json.at("models").is_array());
+  EXPECT_TRUE(json.at("segments").is_array());
+  for (const char* key : {"/truth/pairs/precision", "/models/0/instances/0/T_W_O/3/3",
+                          "/models/0/instances/0/centroid_m/2",
+                          "/models/0/instances/0/match_score"}) {
+    EXPECT_TRUE(json.contains(nlohmann::json::json_pointer(key))) << key;
   }
   const objects::ObjectDatabase db = objects::loadObjectDatabase((out / "objects.sodb").string());
   EXPECT_GE(db.models().size(), 1u) << "the room's objects move every session";

@@ -10,14 +10,14 @@
 #include <set>
 #include <tuple>
 
-#include "core/error.h"
+#include "strata/core/error.h"
 #include "fusion_fixture.h"
-#include "integrate/device_fusion.h"
-#include "occupancy/occupancy_device.h"
-#include "occupancy/occupancy_reference.h"
-#include "sim/analytic_dataset.h"
-#include "sim/session/sim_session.h"
-#include "sim/world/world_paths.h"
+#include "strata/integrate/device_fusion.h"
+#include "strata/occupancy/occupancy_device.h"
+#include "strata/occupancy/occupancy_reference.h"
+#include "strata/sim/analytic_dataset.h"
+#include "strata/sim/session/sim_session.h"
+#include "strata/sim/world/world_paths.h"
 
 namespace strata {
 namespace {

@@ -6,15 +6,15 @@
 #include <cstdio>
 #include <memory>
 
-#include "cli/sim_setup.h"
-#include "eval/occupancy_compare.h"
-#include "eval/occupancy_nearest.h"
+#include "strata/sim/sim_setup.h"
+#include "strata/occupancy/eval/occupancy_compare.h"
+#include "strata/occupancy/eval/occupancy_nearest.h"
 #include "fusion_fixture.h"
-#include "occupancy/occupancy_reference.h"
-#include "mesh/mesh_metrics.h"
-#include "sim/analytic_dataset.h"
-#include "sim/session/sim_session.h"
-#include "sim/world/world_paths.h"
+#include "strata/occupancy/occupancy_reference.h"
+#include "strata/mesh/mesh_metrics.h"
+#include "strata/sim/analytic_dataset.h"
+#include "strata/sim/session/sim_session.h"
+#include "strata/sim/world/world_paths.h"
 
 namespace strata {
 namespace {
@@ -109,9 +109,9 @@ TEST(OccupancyVsTsdf, EveryOccupiedVoxelHoldsTheTrueSurfaceAtExactDepth) {
 }
 
 TEST(OccupancyVsTsdf, SimulatedRoomSessionWithSensorNoise) {
-  sim::SimSessionConfig session_config = apps::sessionConfig(30.0, 10, true, false);
+  sim::SimSessionConfig session_config = sim::sessionConfig(30.0, 10, true, false);
   session_config.camera.intrinsics = halfCamera();
-  const sim::SimSessionDataset session(apps::loadWorld(sim::findWorld("room"), 0, 0), 0,
+  const sim::SimSessionDataset session(sim::loadWorld(sim::findWorld("room"), 0, 0), 0,
                                        session_config);
   const auto truth_frame = [&](std::size_t i) {
     RgbdFrame frame;

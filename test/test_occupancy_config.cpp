@@ -4,9 +4,9 @@
 #include <cmath>
 #include <string>
 
-#include "core/error.h"
+#include "strata/core/error.h"
 #include "fusion_fixture.h"
-#include "occupancy/occupancy_device.h"
+#include "strata/occupancy/occupancy_device.h"
 
 namespace strata {
 namespace {

@@ -10,21 +10,15 @@
 
 #include "cli/plan_command.h"
 #include "cli/topo_command.h"
-#include "io/image_io.h"
-#include "map/map_file.h"
+#include "strata/io/image_io.h"
+#include "strata/map/map_file.h"
 #include "plan_room_scene.h"
+#include "test_utils.h"
 
 namespace strata {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string readText(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 class PlanCliTest : public ::testing::Test {
  protected:
@@ -70,10 +64,10 @@ TEST_F(PlanCliTest, PlansThroughTheDoorAndWritesTheFiles) {
     const apps::PlanOptions o = options(planner);
     ASSERT_EQ(plan(o), 0) << planner << ": " << stderr_;
     const fs::path out(o.out_dir);
-    const std::string csv = readText(out / "path.csv");
+    const std::string csv = test::readText(out / "path.csv");
     EXPECT_EQ(csv.rfind("x,y,z\n1.0500,0.5500,0.5500\n", 0), 0u) << csv;
     EXPECT_NE(csv.find("2.9500,0.5500,0.5500\n"), std::string::npos) << csv;
-    const std::string report = readText(out / "report.json");
+    const std::string report = test::readText(out / "report.json");
     EXPECT_NE(report.find("\"planner\": \"" + planner + "\""), std::string::npos) << report;
     EXPECT_NE(report.find("\"success\": true"), std::string::npos) << report;
     for (const char* key : {"length_m", "min_clearance_m", "planning_ms", "build_ms",
@@ -94,7 +88,7 @@ TEST_F(PlanCliTest, NoPathWhenTheDoorIsClosed) {
   o.map_path = path("closed.strata");
   EXPECT_EQ(plan(o), 1);
   EXPECT_NE(stderr_.find("not connected"), std::string::npos) << stderr_;
-  EXPECT_NE(readText(fs::path(o.out_dir) / "report.json").find("\"success\": false"),
+  EXPECT_NE(test::readText(fs::path(o.out_dir) / "report.json").find("\"success\": false"),
             std::string::npos);
 }
 
@@ -145,7 +139,7 @@ TEST_F(PlanCliTest, TopoWritesTheMapAndItsPicture) {
   const int code = apps::runTopo(o);
   const std::string out = testing::internal::GetCapturedStdout();
   ASSERT_EQ(code, 0);
-  const std::string json = readText(fs::path(o.out_dir) / "topo.json");
+  const std::string json = test::readText(fs::path(o.out_dir) / "topo.json");
   for (const char* key : {"\"cluster_count\"", "\"portal_count\"", "\"edges\"", "\"build_ms\"",
                           "\"memory_bytes\"", "\"grid_memory_bytes\"", "\"clusters\""}) {
     EXPECT_NE(json.find(key), std::string::npos) << key;

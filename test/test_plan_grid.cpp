@@ -5,8 +5,8 @@
 
 #include <cmath>
 
-#include "plan/collision_checker.h"
-#include "plan/grid_astar.h"
+#include "strata/plan/collision_checker.h"
+#include "strata/plan/grid_astar.h"
 #include "plan_room_scene.h"
 
 namespace strata::plan {

@@ -7,9 +7,9 @@
 #include <limits>
 #include <string>
 
-#include "align/pose_graph.h"
-#include "align/synthetic_sessions.h"
-#include "core/error.h"
+#include "strata/align/pose_graph.h"
+#include "strata/align/synthetic_sessions.h"
+#include "strata/core/error.h"
 
 namespace strata::align {
 namespace {

@@ -6,14 +6,14 @@
 #include <random>
 #include <vector>
 
-#include "odometry/imu_factor.h"
-#include "odometry/initialization.h"
-#include "odometry/marginalization.h"
-#include "odometry/preintegration.h"
-#include "odometry/reprojection_factor.h"
-#include "odometry/so3.h"
-#include "odometry/synthetic/vio_scenario.h"
-#include "sim/sensors/imu.h"
+#include "strata/odometry/imu_factor.h"
+#include "strata/odometry/initialization.h"
+#include "strata/odometry/marginalization.h"
+#include "strata/odometry/preintegration.h"
+#include "strata/odometry/reprojection_factor.h"
+#include "strata/odometry/so3.h"
+#include "strata/odometry/synthetic/vio_scenario.h"
+#include "strata/sim/sensors/imu.h"
 
 namespace strata::odometry {
 namespace {

@@ -5,11 +5,11 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/error.h"
+#include "strata/core/error.h"
 #include "fusion_fixture.h"
-#include "io/dataset.h"
-#include "raycast/raycast.h"
-#include "sim/analytic_dataset.h"
+#include "strata/io/open_dataset.h"
+#include "strata/raycast/raycast.h"
+#include "strata/sim/analytic_dataset.h"
 #include "test_utils.h"
 
 namespace strata {

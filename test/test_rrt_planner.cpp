@@ -4,10 +4,10 @@
 
 #include <cmath>
 
-#include "core/error.h"
-#include "plan/collision_checker.h"
-#include "plan/path_shortcut.h"
-#include "plan/rrt_planner.h"
+#include "strata/core/error.h"
+#include "strata/plan/collision_checker.h"
+#include "strata/plan/path_shortcut.h"
+#include "strata/plan/rrt_planner.h"
 #include "plan_test_scene.h"
 
 namespace strata::plan {

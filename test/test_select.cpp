@@ -5,15 +5,15 @@
 
 #include <cmath>
 
-#include "core/error.h"
+#include "strata/core/error.h"
 #include "fusion_fixture.h"
-#include "raycast/raycast.h"
-#include "select/select_differences.h"
-#include "select/select_samples.h"
-#include "select/keyframe_scorer.h"
-#include "select/keyframe_selection.h"
-#include "eval/selection_eval.h"
-#include "sim/analytic_dataset.h"
+#include "strata/raycast/raycast.h"
+#include "strata/select/select_differences.h"
+#include "strata/select/select_samples.h"
+#include "strata/select/keyframe_scorer.h"
+#include "strata/select/keyframe_selection.h"
+#include "strata/select/eval/selection_eval.h"
+#include "strata/sim/analytic_dataset.h"
 
 namespace strata::selection {
 namespace {

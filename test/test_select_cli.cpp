@@ -13,9 +13,9 @@
 #include "cli/select_outputs.h"
 #include "cli/select_plot.h"
 #include "fusion_fixture.h"
-#include "io/tum_writer.h"
-#include "map/map_file.h"
-#include "sim/analytic_dataset.h"
+#include "strata/io/tum_writer.h"
+#include "strata/map/map_file.h"
+#include "strata/sim/analytic_dataset.h"
 
 namespace strata {
 namespace {

@@ -10,8 +10,8 @@
 #include <memory>
 
 #include "fusion_fixture.h"
-#include "eval/selection_report.h"
-#include "sim/world/world_paths.h"
+#include "strata/select/eval/selection_report.h"
+#include "strata/sim/world/world_paths.h"
 
 namespace strata::selection {
 namespace {

@@ -7,9 +7,9 @@
 #include <algorithm>
 
 #include "change_pipeline_helpers.h"
-#include "core/error.h"
+#include "strata/core/error.h"
 #include "fusion_fixture.h"
-#include "mapper/selection_loop.h"
+#include "strata/mapper/selection_loop.h"
 
 namespace strata::selection {
 namespace {

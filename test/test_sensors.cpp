@@ -14,16 +14,16 @@
 #include <string>
 #include <vector>
 
-#include "core/error.h"
+#include "strata/core/error.h"
 #include "sensor_stats.h"
-#include "sim/sensors/analytic_ray_scene.h"
-#include "sim/sensors/grey_camera.h"
-#include "sim/sensors/imu.h"
-#include "sim/sensors/odometry_drift.h"
-#include "sim/sensors/quintic_spline.h"
-#include "sim/sensors/rgbd_camera.h"
-#include "sim/rng.h"
-#include "sim/sensors/trajectory.h"
+#include "strata/sim/sensors/analytic_ray_scene.h"
+#include "strata/sim/sensors/grey_camera.h"
+#include "strata/sim/sensors/imu.h"
+#include "strata/sim/sensors/odometry_drift.h"
+#include "strata/sim/sensors/quintic_spline.h"
+#include "strata/sim/sensors/rgbd_camera.h"
+#include "strata/sim/rng.h"
+#include "strata/sim/sensors/camera_path.h"
 
 namespace strata::sim {
 namespace {

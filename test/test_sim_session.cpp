@@ -11,12 +11,12 @@
 
 #include "cli/demo_command.h"
 #include "cli/sim_command.h"
-#include "io/dataset.h"
-#include "io/odometry_frame_file.h"
-#include "io/tum_format.h"
-#include "sim/sensors/odometry_frame.h"
-#include "sim/session/sim_session.h"
-#include "sim/world/world_paths.h"
+#include "strata/io/open_dataset.h"
+#include "strata/io/odometry_frame_file.h"
+#include "strata/io/tum_format.h"
+#include "strata/sim/sensors/odometry_frame.h"
+#include "strata/sim/session/sim_session.h"
+#include "strata/sim/world/world_paths.h"
 
 namespace strata::sim {
 namespace {

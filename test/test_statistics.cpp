@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "core/statistics.h"
+#include "strata/core/statistics.h"
 
 namespace strata {
 namespace {

@@ -8,10 +8,10 @@
 #include <filesystem>
 #include <fstream>
 
-#include "core/atomic_file.h"
-#include "core/error.h"
-#include "store/schema.h"
-#include "store/session_store.h"
+#include "strata/core/atomic_file.h"
+#include "strata/core/error.h"
+#include "strata/store/schema.h"
+#include "strata/store/session_store.h"
 #include "store_test_helpers.h"
 
 namespace strata::test {

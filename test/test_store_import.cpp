@@ -9,10 +9,11 @@
 
 #include "cli/map_command.h"
 #include "cli/sim_command.h"
-#include "core/error.h"
-#include "io/tum_format.h"
-#include "store/session_import.h"
+#include "strata/core/error.h"
+#include "strata/io/tum_format.h"
+#include "strata/store/session_import.h"
 #include "store_test_helpers.h"
+#include "test_utils.h"
 
 namespace strata::test {
 namespace {
@@ -46,13 +47,6 @@ class StoreImport : public testing::Test {
   static fs::path* dir_;
 };
 fs::path* StoreImport::dir_ = nullptr;
-
-std::string readText(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 TEST_F(StoreImport, ExportGivesBackTheSessionOdometry) {
   const fs::path db = *dir_ / "every_frame.sqlite";

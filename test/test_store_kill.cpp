@@ -12,7 +12,7 @@
 #include <random>
 #include <thread>
 
-#include "store/session_store.h"
+#include "strata/store/session_store.h"
 #include "store_test_helpers.h"
 
 namespace strata::test {

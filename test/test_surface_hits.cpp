@@ -3,8 +3,8 @@
 // top of another checker.
 #include <gtest/gtest.h>
 
-#include "core/error.h"
-#include "explore/surface_hits.h"
+#include "strata/core/error.h"
+#include "strata/explore/surface_hits.h"
 
 namespace strata::explore {
 namespace {

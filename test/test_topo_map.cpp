@@ -6,9 +6,9 @@
 #include <map>
 #include <set>
 
-#include "plan/collision_checker.h"
-#include "plan/grid_astar.h"
-#include "plan/topo_planner.h"
+#include "strata/plan/collision_checker.h"
+#include "strata/plan/grid_astar.h"
+#include "strata/plan/topo_planner.h"
 #include "plan_room_scene.h"
 
 namespace strata::plan {

@@ -5,10 +5,10 @@
 #include <cstdio>
 
 #include "fusion_fixture.h"
-#include "io/dataset.h"
-#include "mapper/mapper.h"
+#include "strata/io/open_dataset.h"
+#include "strata/mapper/mapper.h"
 #include "test_utils.h"
-#include "trajectory/trajectory_error.h"
+#include "strata/trajectory/trajectory_error.h"
 
 namespace strata {
 namespace {
@@ -19,7 +19,7 @@ TEST(TrackRedkitchen, TracksWithoutPosesWithinThreeCentimetres) {
   // NOTE: 60 frames (2 s of the sequence) keep the run near a minute on 2 shared cores.
   const std::size_t frames = std::min<std::size_t>(60, dataset->size());
   Mapper mapper(MapperConfig{}, test::sharedContext());
-  std::vector<traj::StampedPose> estimate, truth;
+  std::vector<trajectory::StampedPose> estimate, truth;
   std::size_t lost = 0;
   for (std::size_t i = 0; i < frames; ++i) {
     const RgbdFrame frame = dataset->load(i);
@@ -31,8 +31,8 @@ TEST(TrackRedkitchen, TracksWithoutPosesWithinThreeCentimetres) {
     estimate.push_back({frame.timestamp_s, tracked.track.T_W_C});
     truth.push_back({frame.timestamp_s, frame.T_W_C});
   }
-  const traj::TrajectoryError error =
-      traj::evaluateTrajectory(estimate, truth, traj::Alignment::kSE3);
+  const trajectory::TrajectoryError error =
+      trajectory::evaluateTrajectory(estimate, truth, trajectory::Alignment::kSE3);
   std::printf("redkitchen %zu frames: %zu lost, ATE RMSE %.1f mm, max %.1f mm, path %.2f m\n",
               frames, lost, error.ate_rmse_m * 1e3, error.ate_max_m * 1e3, error.path_length_m);
   EXPECT_EQ(lost, 0u);

@@ -4,9 +4,9 @@
 
 #include <cmath>
 
-#include "core/error.h"
-#include "plan/collision_checker.h"
-#include "plan/trajectory.h"
+#include "strata/core/error.h"
+#include "strata/plan/collision_checker.h"
+#include "strata/plan/flight_trajectory.h"
 #include "plan_test_scene.h"
 
 namespace strata::plan {

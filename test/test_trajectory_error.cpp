@@ -8,10 +8,10 @@
 #include <fstream>
 
 #include "cli/eval_trajectory_command.h"
-#include "core/error.h"
-#include "trajectory/trajectory_error.h"
+#include "strata/core/error.h"
+#include "strata/trajectory/trajectory_error.h"
 
-namespace strata::traj {
+namespace strata::trajectory {
 namespace {
 
 namespace fs = std::filesystem;
@@ -244,4 +244,4 @@ TEST(EvalTrajectoryCommand, WritesJsonAndPlotAndRefusesAMissingFile) {
 }
 
 }  // namespace
-}  // namespace strata::traj
+}  // namespace strata::trajectory

@@ -10,18 +10,18 @@
 #include <iterator>
 #include <limits>
 
-#include "core/error.h"
-#include "eval/accuracy.h"
+#include "strata/core/error.h"
+#include "strata/mapper/eval/accuracy.h"
 #include "fusion_fixture.h"
-#include "io/dataset.h"
-#include "integrate/block_allocation.h"
-#include "integrate/tsdf_integration.h"
+#include "strata/io/open_dataset.h"
+#include "strata/integrate/block_allocation.h"
+#include "strata/integrate/tsdf_integration.h"
 #include "map_compare.h"
-#include "io/image_io.h"
-#include "io/tum_writer.h"
-#include "mesh/extract_mesh.h"
-#include "mesh/mesh_metrics.h"
-#include "sim/analytic_dataset.h"
+#include "strata/io/image_io.h"
+#include "strata/io/tum_writer.h"
+#include "strata/mesh/extract_mesh.h"
+#include "strata/mesh/mesh_metrics.h"
+#include "strata/sim/analytic_dataset.h"
 #include "test_utils.h"
 
 namespace strata {

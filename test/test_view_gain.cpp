@@ -9,12 +9,12 @@
 #include <memory>
 #include <vector>
 
-#include "core/error.h"
-#include "explore/view_gain.h"
+#include "strata/core/error.h"
+#include "strata/explore/view_gain.h"
 #include "fusion_fixture.h"
-#include "map/device_tsdf_map.h"
-#include "sim/session/sim_session.h"
-#include "sim/world/world_paths.h"
+#include "strata/map/device_tsdf_map.h"
+#include "strata/sim/session/sim_session.h"
+#include "strata/sim/world/world_paths.h"
 
 namespace strata::explore {
 namespace {

@@ -22,18 +22,18 @@
 #include <vector>
 
 #include "cli/odometry_summary.h"
-#include "io/euroc_dataset.h"
-#include "io/tum_format.h"
-#include "lcm/channels.h"
-#include "lcm/convert_pose.h"
-#include "lcm/pose_buffer.h"
+#include "strata/io/euroc_dataset.h"
+#include "strata/io/tum_format.h"
+#include "strata/lcm/channels.h"
+#include "strata/lcm/convert_pose.h"
+#include "strata/lcm/pose_buffer.h"
 #include "lcm_process_helpers.h"
-#include "map/map_file.h"
+#include "strata/map/map_file.h"
 #include "strata/imu_t.hpp"
 #include "strata/map_stats_t.hpp"
 #include "strata/pose_t.hpp"
 #include "test_utils.h"
-#include "trajectory/trajectory_error.h"
+#include "strata/trajectory/trajectory_error.h"
 
 namespace strata::test {
 namespace {
@@ -126,7 +126,7 @@ TEST(VioChain, PlayerVioAndMapperFuseASimulatedSessionWithoutTruthPoses) {
   ASSERT_EQ(readText(dir / "rc.txt"), "play=0 vio=0 mapper=0\n") << logs(dir);
 
   const euroc::EurocDataset grey = euroc::EurocDataset::open(session.string());
-  const std::vector<traj::StampedPose> rgbd_truth =
+  const std::vector<trajectory::StampedPose> rgbd_truth =
       tum::readTrajectory((session / "groundtruth.txt").string());
   const Recorded r = readRecorded(dir / "outputs.lcm");
   ASSERT_EQ(r.imu, grey.imu().size()) << "lcm-logger missed IMU samples";
@@ -154,30 +154,30 @@ TEST(VioChain, PlayerVioAndMapperFuseASimulatedSessionWithoutTruthPoses) {
   EXPECT_EQ(jsonInt(summary, "failures"), 0) << summary;
 
   // Error of the poses at their own stamps against cam0's truth, after SE(3) alignment.
-  std::vector<traj::StampedPose> estimate;
+  std::vector<trajectory::StampedPose> estimate;
   lcm_io::PoseBuffer buffer;
   for (const auto& [utime, T_W_C] : r.poses) {
     estimate.push_back({trajectoryTime(utime), T_W_C});
     buffer.add(utime, T_W_C);
   }
-  traj::TrajectoryErrorOptions exact;
+  trajectory::TrajectoryErrorOptions exact;
   exact.max_time_difference_s = 1e-4;
-  const traj::TrajectoryError own =
-      traj::evaluateTrajectory(estimate, apps::cameraTruth(grey), exact);
+  const trajectory::TrajectoryError own =
+      trajectory::evaluateTrajectory(estimate, apps::cameraTruth(grey), exact);
   EXPECT_EQ(own.matched, r.poses.size());
   EXPECT_LT(own.ate_rmse_m, 0.03);
   EXPECT_LT(own.ate_max_m, 0.06);
   // The poses the mapper fuses the RGB-D frames at: interpolated as it does, against
   // groundtruth.txt.
-  std::vector<traj::StampedPose> at_rgbd;
-  for (const traj::StampedPose& truth : rgbd_truth) {
+  std::vector<trajectory::StampedPose> at_rgbd;
+  for (const trajectory::StampedPose& truth : rgbd_truth) {
     const std::int64_t utime = base_utime + std::llround((truth.timestamp_s - t0_s) * 1e6);
     Eigen::Isometry3d T_W_C;
     if (buffer.lookup(utime, &T_W_C) == lcm_io::PoseLookup::kFound)
       at_rgbd.push_back({truth.timestamp_s, T_W_C});
   }
   ASSERT_GE(at_rgbd.size(), 10u);
-  const traj::TrajectoryError fused = traj::evaluateTrajectory(at_rgbd, rgbd_truth, exact);
+  const trajectory::TrajectoryError fused = trajectory::evaluateTrajectory(at_rgbd, rgbd_truth, exact);
   EXPECT_LT(fused.ate_rmse_m, 0.03);
   std::printf(
       "strata-vio over LCM: %zu poses for %zu grey frames (%zu after the first pose); ATE "

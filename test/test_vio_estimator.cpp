@@ -7,16 +7,16 @@
 #include <random>
 #include <vector>
 
-#include "odometry/synthetic/vio_scenario.h"
-#include "odometry/vio_estimator.h"
-#include "trajectory/trajectory_error.h"
+#include "strata/odometry/synthetic/vio_scenario.h"
+#include "strata/odometry/vio_estimator.h"
+#include "strata/trajectory/trajectory_error.h"
 
 namespace strata::odometry {
 namespace {
 
 struct EstimatorRun {
   std::vector<FrameEstimate> estimates;
-  std::vector<traj::StampedPose> estimated, truth;  // tracked frames: left camera poses
+  std::vector<trajectory::StampedPose> estimated, truth;  // tracked frames: left camera poses
   double worst_up_error_rad = 0.0;                  // gravity direction, tracked frames
   double first_up_error_rad = -1.0;                 // ... at the first tracked frame
   double seconds = 0.0;                             // wall time in addFrame (printed, not asserted)
@@ -58,7 +58,7 @@ EstimatorRun runEstimator(const synthetic::Scenario& s, std::size_t first, const
 // Tracked frames of estimates[begin, end): ATE of the left camera positions.
 double segmentAte(const synthetic::Scenario& s, std::size_t first, const EstimatorRun& run,
                   double t_begin_s, double t_end_s) {
-  std::vector<traj::StampedPose> estimated, truth;
+  std::vector<trajectory::StampedPose> estimated, truth;
   for (std::size_t i = 0; i < run.estimates.size(); ++i) {
     const FrameEstimate& e = run.estimates[i];
     if (e.status != VioStatus::kTracking || e.t_s < t_begin_s || e.t_s >= t_end_s) continue;
@@ -66,7 +66,7 @@ double segmentAte(const synthetic::Scenario& s, std::size_t first, const Estimat
     truth.push_back({e.t_s, s.T_W_C_truth[first + i]});
   }
   if (estimated.size() < 3) return 1e9;
-  return traj::evaluateTrajectory(estimated, truth, traj::Alignment::kSE3).ate_rmse_m;
+  return trajectory::evaluateTrajectory(estimated, truth, trajectory::Alignment::kSE3).ate_rmse_m;
 }
 
 // Iterations bound the solves, not time: the tests give the same figures on a loaded machine.
@@ -95,8 +95,8 @@ TEST(VioEstimator, TracksASimulatedStereoSequenceFromStandstill) {
     tracked += e.status == VioStatus::kTracking;
   }
   EXPECT_GE(tracked, run.estimates.size() - 12);
-  const traj::TrajectoryError error =
-      traj::evaluateTrajectory(run.estimated, run.truth, traj::Alignment::kSE3);
+  const trajectory::TrajectoryError error =
+      trajectory::evaluateTrajectory(run.estimated, run.truth, trajectory::Alignment::kSE3);
   const double ate = error.ate_rmse_m;
   std::printf("RPE %.3f %% %.4f deg/m over %.2f m\n", error.rpe_trans_percent,
               error.rpe_rot_deg_per_m, error.path_length_m);
@@ -126,8 +126,8 @@ TEST(VioEstimator, InitialisesInMotion) {
     tracked += e.status == VioStatus::kTracking;
   }
   EXPECT_GE(tracked, run.estimates.size() - 12);
-  const traj::TrajectoryError error =
-      traj::evaluateTrajectory(run.estimated, run.truth, traj::Alignment::kSE3);
+  const trajectory::TrajectoryError error =
+      trajectory::evaluateTrajectory(run.estimated, run.truth, trajectory::Alignment::kSE3);
   const double ate = error.ate_rmse_m;
   std::printf("RPE %.3f %% %.4f deg/m over %.2f m\n", error.rpe_trans_percent,
               error.rpe_rot_deg_per_m, error.path_length_m);
@@ -154,8 +154,8 @@ TEST(VioEstimator, TracksWithTheLeftCameraAlone) {
     failed += e.status == VioStatus::kFailed;
     if (e.status == VioStatus::kFailed) std::printf("%.2f s: %s\n", e.t_s, e.reason.c_str());
   }
-  const traj::TrajectoryError error =
-      traj::evaluateTrajectory(run.estimated, run.truth, traj::Alignment::kSE3);
+  const trajectory::TrajectoryError error =
+      trajectory::evaluateTrajectory(run.estimated, run.truth, trajectory::Alignment::kSE3);
   std::printf("monocular: %zu tracked, %zu failed, ATE %.4f m, worst gravity error %.3f deg\n",
               tracked, failed, error.ate_rmse_m, run.worst_up_error_rad * 180.0 / M_PI);
   // No stereo scale: the IMU alone makes it metric, an order of magnitude less accurately.

@@ -11,10 +11,10 @@
 #include <set>
 #include <vector>
 
-#include "io/euroc_dataset.h"
-#include "lcm/channels.h"
-#include "lcm/convert_pose.h"
-#include "lcm/convert_stereo.h"
+#include "strata/io/euroc_dataset.h"
+#include "strata/lcm/channels.h"
+#include "strata/lcm/convert_pose.h"
+#include "strata/lcm/convert_stereo.h"
 #include "strata/pose_t.hpp"
 #include "test_utils.h"
 #include "vio_node/vio_core.h"

@@ -13,11 +13,11 @@
 #include "cli/odometry_command.h"
 #include "cli/odometry_summary.h"
 #include "cli/sim_command.h"
-#include "core/error.h"
-#include "io/euroc_dataset.h"
-#include "io/tum_format.h"
-#include "odometry/pipeline/vio_pipeline.h"
-#include "odometry/pipeline/vio_replay.h"
+#include "strata/core/error.h"
+#include "strata/io/euroc_dataset.h"
+#include "strata/io/tum_format.h"
+#include "strata/odometry/pipeline/vio_pipeline.h"
+#include "strata/odometry/pipeline/vio_replay.h"
 #include "test_utils.h"
 
 namespace strata::odometry {

@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "core/error.h"
-#include "vk/transfer.h"  // private: the staging path, which lavapipe's unified memory skips
-#include "vk/vk.h"
+#include "strata/core/error.h"
+#include "strata/vk/transfer.h"  // private: the staging path, which lavapipe's unified memory skips
+#include "strata/vk/vk.h"
 
 namespace strata::vk {
 namespace {

@@ -9,13 +9,13 @@
 #include <random>
 #include <sstream>
 
-#include "core/error.h"
-#include "mesh/mesh_metrics.h"
-#include "sim/world/footprint.h"
-#include "sim/world/ground_truth.h"
-#include "sim/world/mesh_file.h"
-#include "sim/world/world.h"
-#include "sim/world/world_paths.h"
+#include "strata/core/error.h"
+#include "strata/mesh/mesh_metrics.h"
+#include "strata/sim/world/footprint.h"
+#include "strata/sim/world/ground_truth.h"
+#include "strata/sim/world/mesh_file.h"
+#include "strata/sim/world/world.h"
+#include "strata/sim/world/world_paths.h"
 #include "test_utils.h"
 #include "world_test_scenes.h"
 
@@ -26,21 +26,6 @@ namespace fs = std::filesystem;
 using test::analyticBoxRoomSdf;
 using test::boxRoomYaml;
 using test::kShippedWorlds;
-
-std::string readText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-fs::path freshDir(const std::string& name) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("strata_test_world_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
 
 std::string errorOf(const std::string& yaml) {
   try {
@@ -150,18 +135,19 @@ TEST(World, SameSeedSameTruthAndFilesDifferentSeedDifferentLayout) {
   }
   EXPECT_TRUE(differs) << "seed 99 gave the same layout as seed 7";
 
-  const fs::path dir_a = freshDir("gt_a"), dir_b = freshDir("gt_b");
+  const fs::path dir_a = strata::test::freshTempDir("world_gt_a");
+  const fs::path dir_b = strata::test::freshTempDir("world_gt_b");
   writeGroundTruth(a, dir_a.string());
   writeGroundTruth(b, dir_b.string());
   int files = 0;
   for (const auto& entry : fs::recursive_directory_iterator(dir_a)) {
     if (!entry.is_regular_file()) continue;
     const fs::path relative = fs::relative(entry.path(), dir_a);
-    EXPECT_EQ(readText(entry.path().string()), readText((dir_b / relative).string())) << relative;
+    EXPECT_EQ(strata::test::readText(entry.path()), strata::test::readText(dir_b / relative)) << relative;
     ++files;
   }
   EXPECT_GT(files, 5 * 3);
-  const std::string json = readText((dir_a / "session_1" / "objects.json").string());
+  const std::string json = strata::test::readText(dir_a / "session_1" / "objects.json");
   EXPECT_NE(json.find("\"changed_since_previous\""), std::string::npos);
   EXPECT_NE(json.find("\"T_W_O\""), std::string::npos);
   fs::remove_all(dir_a);
@@ -223,7 +209,7 @@ TEST(World, DoorsOpenTheWalls) {
 }
 
 TEST(World, ObjMeshObjectsAndOptionalFiles) {
-  const fs::path dir = freshDir("obj");
+  const fs::path dir = strata::test::freshTempDir("world_obj");
   std::ofstream((dir / "cube.obj").string())
       << "# unit cube, quads, one face with negative indices\n"
          "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
@@ -286,7 +272,7 @@ TEST(World, LightingVariesPerSessionWhenAsked) {
 }
 
 TEST(World, WorldsDirOverride) {
-  const fs::path dir = freshDir("worlds_dir");
+  const fs::path dir = strata::test::freshTempDir("world_worlds_dir");
   fs::copy_file(defaultWorldPath(), dir / "room.yaml");
   setenv("STRATA_WORLDS_DIR", dir.c_str(), 1);
   EXPECT_EQ(defaultWorldPath(), (dir / "room.yaml").string());

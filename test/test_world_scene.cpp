@@ -5,9 +5,9 @@
 #include <cmath>
 #include <random>
 
-#include "mesh/mesh_metrics.h"
-#include "sim/world/world.h"
-#include "sim/world/world_paths.h"
+#include "strata/mesh/mesh_metrics.h"
+#include "strata/sim/world/world.h"
+#include "strata/sim/world/world_paths.h"
 #include "world_test_scenes.h"
 
 namespace strata::sim {

@@ -9,9 +9,9 @@
 
 #include "cli/align_outputs.h"
 #include "cli/align_plot.h"
-#include "cli/progress.h"
-#include "core/error.h"
-#include "store/session_import.h"
+#include "strata/core/progress.h"
+#include "strata/core/error.h"
+#include "strata/store/session_import.h"
 
 namespace strata::apps {
 namespace {

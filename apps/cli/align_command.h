@@ -1,5 +1,5 @@
 #pragma once
-// `strata align`: multi-session alignment (host/align, docs/align.md).
+// `strata align`: multi-session alignment (src/strata/align, docs/align.md).
 //   strata align SESSION_DIR... --out DIR   imports the folders into DIR/map.sqlite (the first
 //                                           anchors the world frame), then aligns
 //   strata align --db map.sqlite [--out DIR] aligns the sessions of an existing map database

@@ -7,47 +7,49 @@
 #include <map>
 #include <sstream>
 
-#include "core/atomic_file.h"
-#include "core/json_text.h"
-#include "core/pose_interpolation.h"
-#include "io/tum_format.h"
+#include "cli/report_json.h"
+#include "strata/core/atomic_file.h"
+#include "strata/core/pose_interpolation.h"
+#include "strata/io/tum_format.h"
+#include "strata/io/tum_writer.h"
 
 namespace strata::apps {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string poseJson(const Eigen::Isometry3d& T) {
+Json poseJson(const Eigen::Isometry3d& T) {
   const Eigen::Quaterniond q(T.linear());
-  const Eigen::Vector3d t = T.translation();
-  std::ostringstream o;
-  o << "{\"t_m\": [" << jsonNumber(t.x()) << ", " << jsonNumber(t.y()) << ", "
-    << jsonNumber(t.z()) << "], \"q_xyzw\": [" << jsonNumber(q.x()) << ", " << jsonNumber(q.y())
-    << ", " << jsonNumber(q.z()) << ", " << jsonNumber(q.w()) << "]}";
-  return o.str();
+  Json j;
+  j["t_m"] = jsonVector(Eigen::Vector3d(T.translation()));
+  j["q_xyzw"] = Json::array({q.x(), q.y(), q.z(), q.w()});
+  return j;
 }
 
-std::string sessionsJson(const align::StoreAlignment& a) {
-  std::ostringstream o;
-  o << "[";
+Json sessionsJson(const align::StoreAlignment& a) {
+  Json sessions = Json::array();
   for (std::size_t s = 0; s < a.sessions.size(); ++s) {
     const align::AlignedSession& r = a.result.sessions[s];
     std::size_t loops = 0;
     for (const align::AlignLoop& l : a.result.loops)
       if (l.accepted && (l.session_a == s || l.session_b == s)) ++loops;
-    o << (s ? ", " : "") << "{\"index\": " << s << ", \"id\": " << a.sessions[s].id
-      << ", \"name\": " << jsonQuoted(a.sessions[s].name)
-      << ", \"folder\": " << jsonQuoted(a.sessions[s].source_folder)
-      << ", \"odometry_file\": " << jsonQuoted(a.odometry_files[s])
-      << ", \"frames\": " << r.frame_T_S_C.size() << ", \"keyframes\": " << r.keyframes.size()
-      << ", \"aligned\": " << (r.aligned ? "true" : "false") << ", \"accepted_loops\": " << loops
-      << ", \"T_W_S\": " << (r.T_W_S ? poseJson(*r.T_W_S) : "null") << "}";
+    Json j;
+    j["index"] = s;
+    j["id"] = a.sessions[s].id;
+    j["name"] = a.sessions[s].name;
+    j["folder"] = a.sessions[s].source_folder;
+    j["odometry_file"] = a.odometry_files[s];
+    j["frames"] = r.frame_T_S_C.size();
+    j["keyframes"] = r.keyframes.size();
+    j["aligned"] = r.aligned;
+    j["accepted_loops"] = loops;
+    j["T_W_S"] = r.T_W_S ? poseJson(*r.T_W_S) : Json(nullptr);
+    sessions.push_back(std::move(j));
   }
-  o << "]";
-  return o.str();
+  return sessions;
 }
 
-std::string reasonsJson(const std::vector<std::string>& reasons) {
+Json reasonsJson(const std::vector<std::string>& reasons) {
   // Grouped by the reason's words: the figures in a reason ("12 below 25") vary per candidate.
   std::map<std::string, std::size_t> counts;
   for (const std::string& r : reasons) {
@@ -61,15 +63,44 @@ std::string reasonsJson(const std::vector<std::string>& reasons) {
     }
     ++counts[key.empty() ? "unspecified" : key];
   }
-  std::ostringstream o;
-  o << "{";
-  bool first = true;
-  for (const auto& [reason, count] : counts) {
-    o << (first ? "" : ", ") << jsonQuoted(reason) << ": " << count;
-    first = false;
-  }
-  o << "}";
-  return o.str();
+  Json j = Json::object();
+  for (const auto& [reason, count] : counts) j[reason] = count;
+  return j;
+}
+
+Json loopsJson(const align::AlignResult& r) {
+  std::size_t accepted = 0;
+  for (const align::AlignLoop& l : r.loops) accepted += l.accepted ? 1 : 0;
+  Json j;
+  j["candidates_verified"] = r.candidates;
+  j["verified"] = r.loops.size();
+  j["accepted"] = accepted;
+  j["switched_off"] = r.loops.size() - accepted;
+  j["rejections"] = reasonsJson(r.rejection_reasons);
+  return j;
+}
+
+Json timesJson(const align::AlignResult& r, double total_s) {
+  const double keyframes = std::max<double>(1.0, r.times.keyframes);
+  Json j;
+  j["keyframes"] = r.times.keyframes;
+  j["features_s"] = r.times.features_s;
+  j["retrieval_s"] = r.times.retrieval_s;
+  j["verification_s"] = r.times.verification_s;
+  j["graph_s"] = r.times.graph_s;
+  j["loop_detection_ms_per_keyframe"] =
+      1e3 * (r.times.retrieval_s + r.times.verification_s) / keyframes;
+  j["total_s"] = total_s;
+  return j;
+}
+
+Json poseGraphJson(const align::AlignResult& r) {
+  Json j;
+  j["iterations"] = r.graph.iterations;
+  j["initial_cost"] = r.graph.initial_cost;
+  j["final_cost"] = r.graph.final_cost;
+  j["solve_s"] = r.graph.solve_seconds;
+  return j;
 }
 
 }  // namespace
@@ -82,14 +113,13 @@ std::vector<std::string> writeAlignedTrajectories(const align::StoreAlignment& a
     if (!r.aligned) continue;
     const fs::path dir = fs::path(out_dir) / ("session_" + std::to_string(s));
     fs::create_directories(dir);
-    std::ostringstream o;
-    o << "# session " << s << " '" << a.sessions[s].name
-      << "' aligned: timestamp tx ty tz qx qy qz qw (camera-to-world, common frame)\n";
-    o << std::fixed << std::setprecision(6);
+    std::vector<tum::TimedPose> poses;
     for (std::size_t i = 0; i < r.frame_T_W_C.size(); ++i)
-      o << r.frame_timestamps_s[i] << " " << tum::poseToTum(r.frame_T_W_C[i]) << "\n";
+      poses.push_back({r.frame_timestamps_s[i], r.frame_T_W_C[i]});
     files.push_back((dir / "trajectory.txt").string());
-    writeTextAtomically(files.back(), o.str());
+    writeTumTrajectory(files.back(), poses,
+                       {"session " + std::to_string(s) + " '" + a.sessions[s].name +
+                        "' aligned: timestamp tx ty tz qx qy qz qw (camera-to-world, common frame)"});
   }
   return files;
 }
@@ -124,29 +154,18 @@ void writeLoopsCsv(const align::StoreAlignment& a, const align::AlignmentScore* 
 void writeAlignReport(const align::StoreAlignment& a, const align::AlignmentScore* score,
                       const std::string& db_path, double total_s, const std::string& path) {
   const align::AlignResult& r = a.result;
-  std::size_t accepted = 0, aligned = 0;
-  for (const align::AlignLoop& l : r.loops) accepted += l.accepted ? 1 : 0;
+  std::size_t aligned = 0;
   for (const align::AlignedSession& s : r.sessions) aligned += s.aligned ? 1 : 0;
-  const double keyframes = std::max<double>(1.0, r.times.keyframes);
-  std::ostringstream o;
-  o << "{\n  \"database\": " << jsonQuoted(db_path) << ",\n  \"sessions\": " << sessionsJson(a)
-    << ",\n  \"aligned_sessions\": " << aligned << ",\n  \"unaligned_sessions\": "
-    << r.sessions.size() - aligned << ",\n  \"loops\": {\"candidates_verified\": " << r.candidates
-    << ", \"verified\": " << r.loops.size() << ", \"accepted\": " << accepted
-    << ", \"switched_off\": " << r.loops.size() - accepted
-    << ", \"rejections\": " << reasonsJson(r.rejection_reasons) << "},\n  \"times\": {"
-    << "\"keyframes\": " << r.times.keyframes << ", \"features_s\": " << jsonNumber(r.times.features_s)
-    << ", \"retrieval_s\": " << jsonNumber(r.times.retrieval_s)
-    << ", \"verification_s\": " << jsonNumber(r.times.verification_s)
-    << ", \"graph_s\": " << jsonNumber(r.times.graph_s)
-    << ", \"loop_detection_ms_per_keyframe\": "
-    << jsonNumber(1e3 * (r.times.retrieval_s + r.times.verification_s) / keyframes)
-    << ", \"total_s\": " << jsonNumber(total_s) << "},\n  \"pose_graph\": {\"iterations\": "
-    << r.graph.iterations << ", \"initial_cost\": " << jsonNumber(r.graph.initial_cost)
-    << ", \"final_cost\": " << jsonNumber(r.graph.final_cost)
-    << ", \"solve_s\": " << jsonNumber(r.graph.solve_seconds) << "},\n  \"truth\": "
-    << (score ? align::alignmentScoreJson(*score) : "null") << "\n}\n";
-  writeTextAtomically(path, o.str());
+  Json j;
+  j["database"] = db_path;
+  j["sessions"] = sessionsJson(a);
+  j["aligned_sessions"] = aligned;
+  j["unaligned_sessions"] = r.sessions.size() - aligned;
+  j["loops"] = loopsJson(r);
+  j["times"] = timesJson(r, total_s);
+  j["pose_graph"] = poseGraphJson(r);
+  j["truth"] = score ? parseJson(align::alignmentScoreJson(*score)) : Json(nullptr);
+  writeTextAtomically(path, jsonFileText(j));
 }
 
 std::optional<std::vector<align::SessionTruth>> loadAlignTruth(const align::StoreAlignment& a) {

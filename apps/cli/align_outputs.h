@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "align/alignment_eval.h"
-#include "align/store_alignment.h"
+#include "strata/align/alignment_eval.h"
+#include "strata/align/store_alignment.h"
 
 namespace strata::apps {
 

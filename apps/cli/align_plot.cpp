@@ -4,14 +4,14 @@
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
-#include "io/image_io.h"
+#include "strata/io/image_io.h"
 
 namespace strata::apps {
 namespace {
 
 constexpr int kPanel_px = 640;
-constexpr int kMargin_px = 30;
-constexpr int kCaption_px = 60;
+constexpr int kAlignMargin_px = 30;
+constexpr int kAlignCaption_px = 60;
 
 const cv::Scalar kSessionColours[] = {{200, 110, 30}, {40, 140, 240}, {60, 170, 60},
                                       {180, 60, 180}, {30, 60, 200},  {160, 160, 30},
@@ -25,8 +25,8 @@ struct Panel {
   Eigen::Vector2d min_m{0, 0};
   double px_per_m = 1.0;
   cv::Point toPixel(const Eigen::Vector3d& p) const {
-    const double u = x0 + kMargin_px + (p.x() - min_m.x()) * px_per_m;
-    const double v = kMargin_px + kPanel_px - 2 * kMargin_px - (p.y() - min_m.y()) * px_per_m;
+    const double u = x0 + kAlignMargin_px + (p.x() - min_m.x()) * px_per_m;
+    const double v = kAlignMargin_px + kPanel_px - 2 * kAlignMargin_px - (p.y() - min_m.y()) * px_per_m;
     return {static_cast<int>(std::lround(u)), static_cast<int>(std::lround(v))};
   }
 };
@@ -42,7 +42,7 @@ Panel fitPanel(int x0, const std::vector<const std::vector<Eigen::Isometry3d>*>&
   panel.x0 = x0;
   if (lo.x() > hi.x()) return panel;
   const double extent = std::max((hi - lo).maxCoeff(), 1e-3);
-  panel.px_per_m = (kPanel_px - 2 * kMargin_px) / extent;
+  panel.px_per_m = (kPanel_px - 2 * kAlignMargin_px) / extent;
   panel.min_m = lo - 0.5 * (Eigen::Vector2d::Constant(extent) - (hi - lo));
   return panel;
 }
@@ -61,7 +61,7 @@ void drawScaleBar(cv::Mat& image, const Panel& panel) {
   double bar_m = base_m;  // 1-2-5 steps
   for (double f : {2.0, 5.0})
     if (base_m * f <= target_m) bar_m = base_m * f;
-  const int y = kPanel_px - 12, x = panel.x0 + kMargin_px;
+  const int y = kPanel_px - 12, x = panel.x0 + kAlignMargin_px;
   const int len = static_cast<int>(std::lround(bar_m * panel.px_per_m));
   cv::line(image, {x, y}, {x + len, y}, {0, 0, 0}, 2);
   char text[32];
@@ -74,7 +74,7 @@ void drawScaleBar(cv::Mat& image, const Panel& panel) {
 
 void writeAlignPlot(const std::string& png_path, const align::AlignResult& result,
                     const std::vector<std::string>& names) {
-  cv::Mat image(kPanel_px + kCaption_px, 2 * kPanel_px, CV_8UC3, cv::Scalar(255, 255, 255));
+  cv::Mat image(kPanel_px + kAlignCaption_px, 2 * kPanel_px, CV_8UC3, cv::Scalar(255, 255, 255));
   std::vector<const std::vector<Eigen::Isometry3d>*> before, after;
   for (const align::AlignedSession& s : result.sessions) {
     before.push_back(&s.frame_T_S_C);

@@ -5,7 +5,7 @@
 // One colour per session; unaligned sessions are named in the caption.
 #include <string>
 
-#include "align/session_alignment.h"
+#include "strata/align/session_alignment.h"
 
 namespace strata::apps {
 

@@ -4,24 +4,11 @@
 #include <map>
 #include <sstream>
 
-#include "core/json_text.h"
-#include "sim/sensors/odometry_frame.h"
+#include "cli/report_json.h"
+#include "strata/sim/sensors/odometry_frame.h"
 
 namespace strata::apps {
 namespace {
-
-align::AlignSession alignInput(const sim::SimSessionDataset& d) {
-  align::AlignSession s;
-  s.name = d.name();
-  s.frames = &d;
-  for (std::size_t i = 0; i < d.size(); ++i) {
-    const FrameStamp stamp = d.stamp(i);
-    s.frame_timestamps_s.push_back(stamp.timestamp_s);
-    s.frame_T_S_C.push_back(stamp.T_W_C);
-    s.keyframes.push_back(i);  // the demo's frames are already spread along the path
-  }
-  return s;
-}
 
 std::vector<std::optional<Eigen::Isometry3d>> mapped(const Eigen::Isometry3d& T,
                                                      const std::vector<Eigen::Isometry3d>& poses) {
@@ -43,7 +30,7 @@ DemoAlignResult useAlignedPoses(const std::vector<std::shared_ptr<sim::SimSessio
   std::vector<align::AlignSession> inputs;
   std::vector<align::SessionTruth> truth;
   for (const auto& session : sessions) {
-    inputs.push_back(alignInput(*session));
+    inputs.push_back(align::sessionFromDataset(*session));
     truth.emplace_back(session->truePoses().begin(), session->truePoses().end());
   }
   std::map<std::string, std::optional<ProgressBar>> bars;
@@ -72,12 +59,14 @@ DemoAlignResult useAlignedPoses(const std::vector<std::shared_ptr<sim::SimSessio
 }
 
 std::string demoAlignJson(const DemoAlignResult& r) {
-  std::ostringstream o;
-  o << "{\"sessions\": " << r.sessions << ", \"aligned\": " << r.aligned
-    << ", \"loops_verified\": " << r.loops_verified << ", \"loops_accepted\": " << r.loops_accepted
-    << ", \"align_s\": " << jsonNumber(r.align_s)
-    << ", \"truth\": " << align::alignmentScoreJson(r.score) << "}";
-  return o.str();
+  Json j;
+  j["sessions"] = r.sessions;
+  j["aligned"] = r.aligned;
+  j["loops_verified"] = r.loops_verified;
+  j["loops_accepted"] = r.loops_accepted;
+  j["align_s"] = r.align_s;
+  j["truth"] = parseJson(align::alignmentScoreJson(r.score));
+  return jsonText(j);
 }
 
 std::string summarizeDemoAlign(const DemoAlignResult& r) {

@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "align/alignment_eval.h"
-#include "cli/progress.h"
-#include "sim/session/sim_session.h"
+#include "strata/align/alignment_eval.h"
+#include "strata/core/progress.h"
+#include "strata/sim/session/sim_session.h"
 
 namespace strata::apps {
 

@@ -10,18 +10,19 @@
 #include "cli/demo_objects.h"
 #include "cli/demo_report.h"
 #include "cli/diff_outputs.h"
-#include "cli/diff_pipeline.h"
-#include "cli/progress.h"
+#include "strata/core/clock.h"
+#include "strata/mapper/session_diff.h"
+#include "strata/core/progress.h"
 #include "cli/select_incremental.h"
-#include "cli/sim_setup.h"
+#include "strata/sim/sim_setup.h"
 #include "cli/shaded_view.h"
-#include "eval/evaluation_session.h"
-#include "eval/evaluation_world.h"
-#include "core/error.h"
-#include "eval/accuracy.h"
-#include "io/image_io.h"
-#include "raycast/raycast.h"
-#include "mesh/ply.h"
+#include "strata/change/eval/evaluation_session.h"
+#include "strata/change/eval/evaluation_world.h"
+#include "strata/core/error.h"
+#include "strata/mapper/eval/accuracy.h"
+#include "strata/io/image_io.h"
+#include "strata/raycast/raycast.h"
+#include "strata/mesh/ply.h"
 
 namespace strata::apps {
 namespace {
@@ -29,10 +30,6 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 using Sessions = std::vector<std::unique_ptr<change::RecordingSession>>;
-
-double secondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 /// A half-resolution view of a session's own map from its first pose (host raycast: the device
 /// map's layer 0 is the static map).
@@ -138,13 +135,13 @@ DemoReport runDemoPipeline(const DemoOptions& o) {
   }
   if (o.vio.enabled) o.vio.validate();
   if (o.vio.enabled && o.align) throw InputError("--align and --vio cannot be combined (yet)");
-  const auto world = loadWorld(o.world, o.seed, o.sessions);
-  sim::SimSessionConfig config = sessionConfig(30.0, o.frames, !o.no_noise, o.align);
+  const auto world = sim::loadWorld(o.world, o.seed, o.sessions);
+  sim::SimSessionConfig config = sim::sessionConfig(30.0, o.frames, !o.no_noise, o.align);
   // Alignment finds places by ORB corners in the colour images: --align renders them with the
   // world-anchored texture real surfaces would have (flat shading leaves corners on edges only).
   if (o.align) config.camera.color_texture = sim::WorldTextureConfig{};
   config.trajectory.rest_at_start_s = o.restSeconds();
-  const MapConfig map_config = changeMapConfig(o.voxel_size_m);  // min_weight counts frames
+  const MapConfig map_config = change::changeMapConfig(o.voxel_size_m);  // min_weight counts frames
   DiffRunInfo info;
   info.change.min_weight = o.min_weight;
   vk::ContextOptions context_options;
@@ -223,35 +220,6 @@ CLI::App* addDemoCommand(CLI::App& app, DemoOptions& o) {
   demo->add_flag("--quiet", o.quiet, "No progress bar");
   demo->add_flag("--incremental", o.incremental,
                  "Also select keyframes and fuse only those; about doubles the time");
-  demo->add_option("--select-window", o.select.smoothing_window,
-                   "With --incremental: moving-average window of the selection, keyframes (odd)")
-      ->capture_default_str();
-  demo->add_flag(
-      "--no-carry-forward", [&o](std::int64_t) { o.select.carry_forward = false; },
-      "With --incremental: change detection on the fused keyframes only, nothing carried forward "
-      "where keyframes confirmed the map");
-  demo->add_flag(
-      "--no-free-space", [&o](std::int64_t) { o.select.free_space = false; },
-      "With --incremental: change detection takes nothing from skipped keyframes (neither free "
-      "space through vacated places nor arrived surfaces)");
-  demo->add_flag(
-      "--no-shared-vacated", [&o](std::int64_t) { o.select.free_space_shared = false; },
-      "With --incremental: a skipped keyframe's free space comes from its own vacated samples "
-      "only, not also from the places other keyframes found that it looks through");
-  demo->add_option("--free-space-radius", o.select.free_space_radius_m,
-                   "With --incremental: metres around each vacated sample in which the last "
-                   "observations are tested against skipped keyframes' depth for free space")
-      ->check(CLI::Range(0.01, 2.0))
-      ->capture_default_str();
-  demo->add_option("--arrived-ring", o.select.arrived_ring_cells,
-                   "With --incremental: sample cells of skipped keyframes' depth kept on each side "
-                   "of a sample that measures something in front of the map, whose surface change "
-                   "detection then takes (0: none)")
-      ->check(CLI::Range(0, 8))
-      ->capture_default_str();
-  demo->add_option("--select-dilation", o.select.dilation,
-                   "With --incremental: keyframes added on each side of a selected one")
-      ->capture_default_str();
   return demo;
 }
 

@@ -25,7 +25,7 @@ struct DemoOptions {
   float voxel_size_m = 0.02f;
   /// Frames a voxel must be seen in to count as observed (change detection's minimum weight; the
   /// demo fuses with constant weights). 60 frames spread over a session see most surfaces 3+
-  /// times; the default of 10 suits full-rate recordings.
+  /// times; 10 suits full-rate recordings.
   float min_weight = 3.0f;
   bool no_noise = false;
   std::string device;

@@ -1,10 +1,8 @@
 #include "cli/demo_objects.h"
 
-#include <sstream>
-
 #include "cli/objects_outputs.h"
 #include "cli/objects_truth.h"
-#include "core/json_text.h"
+#include "cli/report_json.h"
 
 namespace strata::apps {
 
@@ -17,18 +15,19 @@ void addDemoObjects(const DiffResult& result, const std::vector<TsdfMap>& maps,
     truth.world_sessions.push_back(static_cast<int>(s));
   }
   report.objects = evaluateObjectsRun(truth, result, run);
-  const std::string truth_json = eval::objectDbEvaluationJson(*report.objects, 4);
-  const ObjectsFiles files =
-      writeObjectsFiles(run, result, out_dir, eval::objectDbEvaluationJson(*report.objects, 2));
+  const std::string truth_json = eval::objectDbEvaluationJson(*report.objects);
+  const ObjectsFiles files = writeObjectsFiles(run, result, out_dir, truth_json);
   std::size_t segments = 0;
   for (const auto& session : run.outcomes) segments += session.size();
-  std::ostringstream json;
-  json << "{\"models\": " << run.database.models().size() << ", \"segments\": " << segments
-       << ", \"build_s\": " << jsonNumber(run.build_s) << ", \"file\": " << jsonQuoted(files.json)
-       << ", \"database\": " << jsonQuoted(files.database)
-       << ", \"contact_sheet\": " << jsonQuoted(files.contact_sheet)
-       << ",\n    \"truth\": " << truth_json << "}";
-  report.objects_json = json.str();
+  Json json;
+  json["models"] = run.database.models().size();
+  json["segments"] = segments;
+  json["build_s"] = run.build_s;
+  json["file"] = files.json;
+  json["database"] = files.database;
+  json["contact_sheet"] = files.contact_sheet;
+  json["truth"] = parseJson(truth_json);
+  report.objects_json = jsonText(json);
   report.objects_summary = "Object database: " + summarizeObjects(run) + "; against the truth: " +
                            eval::describeObjectDbEvaluation(*report.objects) +
                            " (objects.json, objects.png).";

@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "cli/demo_report.h"
-#include "cli/diff_pipeline.h"
-#include "sim/world/world.h"
+#include "strata/mapper/session_diff.h"
+#include "strata/sim/world/world.h"
 
 namespace strata::apps {
 

@@ -2,8 +2,8 @@
 
 #include <sstream>
 
-#include "core/atomic_file.h"
-#include "core/json_text.h"
+#include "cli/report_json.h"
+#include "strata/core/atomic_file.h"
 
 namespace strata::apps {
 namespace {
@@ -16,77 +16,89 @@ std::string idList(const std::vector<int>& ids) {
   return out.str();
 }
 
-void writeCounts(std::ostringstream& out, const change::ObjectCounts& c) {
-  out << "\"precision\": " << c.precision() << ", \"recall\": " << c.recall()
-      << ", \"moved_objects\": " << c.moved << ", \"found\": " << c.found
-      << ", \"segments\": " << c.segments << ", \"false_positives\": " << c.false_positives
-      << ", \"over_segmented\": " << c.over_segmented
-      << ", \"under_segmented\": " << c.under_segmented;
+/// Adds the counts' members (precision, recall, moved objects, ...) to `j`.
+void addCounts(const change::ObjectCounts& c, Json& j) {
+  j["precision"] = c.precision();
+  j["recall"] = c.recall();
+  j["moved_objects"] = c.moved;
+  j["found"] = c.found;
+  j["segments"] = c.segments;
+  j["false_positives"] = c.false_positives;
+  j["over_segmented"] = c.over_segmented;
+  j["under_segmented"] = c.under_segmented;
 }
 
-void writeMatches(std::ostringstream& out, const change::SessionObjectEvaluation& e) {
-  out << "[";
-  for (std::size_t i = 0; i < e.objects.size(); ++i) {
-    const change::ObjectMatch& m = e.objects[i];
-    out << (i ? ", " : "") << "{\"id\": " << m.object_id << ", \"name\": " << jsonString(m.name)
-        << ", \"seen_m2\": " << m.visible_area_m2 << ", \"evaluated\": " << m.evaluated
-        << ", \"found\": " << m.found << ", \"segment\": " << m.best_segment
-        << ", \"coverage\": " << m.coverage << ", \"on_object\": " << m.on_object
-        << ", \"segments\": " << m.segments << "}";
+Json matchesJson(const change::SessionObjectEvaluation& e) {
+  Json matches = Json::array();
+  for (const change::ObjectMatch& m : e.objects) {
+    Json j;
+    j["id"] = m.object_id;
+    j["name"] = m.name;
+    j["seen_m2"] = jsonFloat(m.visible_area_m2);
+    j["evaluated"] = m.evaluated;
+    j["found"] = m.found;
+    j["segment"] = m.best_segment;
+    j["coverage"] = m.coverage;
+    j["on_object"] = m.on_object;
+    j["segments"] = m.segments;
+    matches.push_back(std::move(j));
   }
-  out << "]";
+  return matches;
 }
 
-void writeVio(std::ostringstream& out, const VioSessionResult& v) {
-  out << "{\"stereo_frames\": " << v.stereo_frames << ", \"tracked\": " << v.tracked
-      << ", \"failures\": " << v.failures
-      << ", \"first_tracking_s\": " << jsonNumber(v.first_tracking_s)
-      << ", \"rgbd_frames\": " << v.rgbd_frames << ", \"fused\": " << v.fused()
-      << ", \"skipped_before_tracking\": " << v.skipped_before_tracking
-      << ", \"skipped_in_gaps\": " << v.skipped_in_gaps
-      << ", \"skipped_after_tracking\": " << v.skipped_after_tracking
-      << ", \"ate_rmse_m\": " << jsonNumber(v.ate_rmse_m)
-      << ", \"ate_max_m\": " << jsonNumber(v.ate_max_m)
-      << ", \"rotation_rmse_deg\": " << jsonNumber(v.rotation_rmse_deg)
-      << ", \"render_s\": " << v.render_s << ", \"vio_s\": " << v.vio_s << "}";
+Json vioJson(const VioSessionResult& v) {
+  Json j;
+  j["stereo_frames"] = v.stereo_frames;
+  j["tracked"] = v.tracked;
+  j["failures"] = v.failures;
+  j["first_tracking_s"] = v.first_tracking_s;
+  j["rgbd_frames"] = v.rgbd_frames;
+  j["fused"] = v.fused();
+  j["skipped_before_tracking"] = v.skipped_before_tracking;
+  j["skipped_in_gaps"] = v.skipped_in_gaps;
+  j["skipped_after_tracking"] = v.skipped_after_tracking;
+  j["ate_rmse_m"] = v.ate_rmse_m;
+  j["ate_max_m"] = v.ate_max_m;
+  j["rotation_rmse_deg"] = v.rotation_rmse_deg;
+  j["render_s"] = v.render_s;
+  j["vio_s"] = v.vio_s;
+  return j;
 }
 
-void writeSession(std::ostringstream& out, const SessionResult& r,
-                  const change::SessionObjectEvaluation& e) {
+Json demoSessionJson(const SessionResult& r, const change::SessionObjectEvaluation& e) {
   const double n = r.frames > 0 ? static_cast<double>(r.frames) : 1.0;
-  out << "    {\"session\": " << r.session << ", \"frames\": " << r.frames
-      << ", \"recorded_frames\": " << r.recorded_frames
-      << ", \"render_fps\": " << (r.render_s > 0 ? r.frames / r.render_s : 0.0)
-      << ", \"fuse_wall_ms_per_frame\": " << r.fuse_wall_ms / n
-      << ", \"fuse_device_ms_per_frame\": " << r.fuse_device_ms / n << ", \"blocks\": " << r.blocks
-      << ", \"tsdf_mean_abs_error_m\": " << r.tsdf.mean_abs_error_m
-      << ", \"tsdf_voxels_compared\": " << r.tsdf.voxels
-      << ", \"mesh_vertices\": " << r.mesh_vertices
-      << ", \"mesh_mean_distance_m\": " << r.mesh.mean_distance_m
-      << ", \"mesh_p99_distance_m\": " << r.mesh.p99_distance_m
-      << ", \"mesh_fraction_within_voxel\": " << r.mesh.fraction_within
-      << ", \"changed_object_ids\": " << idList(r.changed_ids)
-      << ", \"discovered_objects\": " << r.objects << ",\n     ";
-  if (r.vio) {
-    out << "\"vio\": ";
-    writeVio(out, *r.vio);
-    out << ",\n     ";
-  }
-  writeCounts(out, e.counts);
-  out << ",\n     \"moved_objects_matched\": ";
-  writeMatches(out, e);
-  out << "}";
+  Json j;
+  j["session"] = r.session;
+  j["frames"] = r.frames;
+  j["recorded_frames"] = r.recorded_frames;
+  j["render_fps"] = r.render_s > 0 ? r.frames / r.render_s : 0.0;
+  j["fuse_wall_ms_per_frame"] = r.fuse_wall_ms / n;
+  j["fuse_device_ms_per_frame"] = r.fuse_device_ms / n;
+  j["blocks"] = r.blocks;
+  j["tsdf_mean_abs_error_m"] = r.tsdf.mean_abs_error_m;
+  j["tsdf_voxels_compared"] = r.tsdf.voxels;
+  j["mesh_vertices"] = r.mesh_vertices;
+  j["mesh_mean_distance_m"] = r.mesh.mean_distance_m;
+  j["mesh_p99_distance_m"] = r.mesh.p99_distance_m;
+  j["mesh_fraction_within_voxel"] = r.mesh.fraction_within;
+  j["changed_object_ids"] = r.changed_ids;
+  j["discovered_objects"] = r.objects;
+  if (r.vio) j["vio"] = vioJson(*r.vio);
+  addCounts(e.counts, j);
+  j["moved_objects_matched"] = matchesJson(e);
+  return j;
 }
 
-void writeEvaluation(std::ostringstream& out, const change::WorldEvaluation& e) {
-  out << "  \"evaluation\": {";
-  writeCounts(out, e.totals);
+Json evaluationJson(const change::WorldEvaluation& e) {
   const change::StaticMapEvaluation& s = e.static_map;
-  out << ",\n    \"static_seen_points\": " << s.seen_points
-      << ", \"static_completeness\": " << s.completeness
-      << ", \"static_mesh_area_m2\": " << s.mesh_area_m2
-      << ", \"static_ghost_area_m2\": " << s.ghost_area_m2
-      << ", \"static_ghost_share\": " << s.ghostShare() << "},\n";
+  Json j;
+  addCounts(e.totals, j);
+  j["static_seen_points"] = s.seen_points;
+  j["static_completeness"] = s.completeness;
+  j["static_mesh_area_m2"] = s.mesh_area_m2;
+  j["static_ghost_area_m2"] = s.ghost_area_m2;
+  j["static_ghost_share"] = s.ghostShare();
+  return j;
 }
 
 std::string summarizeVio(const DemoReport& report) {
@@ -115,29 +127,23 @@ std::string summarizeVio(const DemoReport& report) {
 
 void writeDemoReport(const DemoReport& report, const DiffResult& result, const DiffFiles& files,
                      const DiffRunInfo& info, const std::string& path) {
-  std::ostringstream out;
-  out.precision(6);
-  out << std::boolalpha;
-  out << "{\n  \"world\": " << jsonString(report.world) << ",\n  \"seed\": " << report.seed
-      << ",\n  \"map\": " << jsonString(report.map_config)
-      << ",\n  \"device\": " << jsonString(report.device) << ",\n  \"total_s\": " << report.total_s
-      << ",\n  \"sessions\": [\n";
+  Json sessions = Json::array();
   for (std::size_t i = 0; i < report.sessions.size(); ++i) {
-    writeSession(out, report.sessions[i], report.evaluation.sessions.at(i));
-    out << (i + 1 < report.sessions.size() ? ",\n" : "\n");
+    sessions.push_back(demoSessionJson(report.sessions[i], report.evaluation.sessions.at(i)));
   }
-  out << "  ],\n";
-  writeEvaluation(out, report.evaluation);
-  if (!report.incremental_json.empty()) {
-    out << "  \"incremental\": " << report.incremental_json << ",\n";
-  }
-  if (report.alignment) out << "  \"alignment\": " << demoAlignJson(*report.alignment) << ",\n";
-  if (!report.objects_json.empty()) out << "  \"objects\": " << report.objects_json << ",\n";
-  out << "  \"change_detection\": {\n";
-  writeDiffJsonMembers(out, result, files, info, 4);
-  out << "\n  }\n}\n";
-  const std::string text = out.str();
-  writeFileAtomically(path, std::vector<std::uint8_t>(text.begin(), text.end()));
+  Json j;
+  j["world"] = report.world;
+  j["seed"] = report.seed;
+  j["map"] = report.map_config;
+  j["device"] = report.device;
+  j["total_s"] = report.total_s;
+  j["sessions"] = std::move(sessions);
+  j["evaluation"] = evaluationJson(report.evaluation);
+  if (!report.incremental_json.empty()) j["incremental"] = parseJson(report.incremental_json);
+  if (report.alignment) j["alignment"] = parseJson(demoAlignJson(*report.alignment));
+  if (!report.objects_json.empty()) j["objects"] = parseJson(report.objects_json);
+  j["change_detection"] = parseJson(diffReportJson(result, files, info));
+  writeTextAtomically(path, jsonFileText(j));
 }
 
 std::string summarizeDemo(const DemoReport& report, const std::string& out_dir) {

@@ -9,9 +9,9 @@
 #include "cli/demo_vio.h"
 #include "cli/diff_report.h"
 #include "cli/select_incremental.h"
-#include "eval/accuracy.h"
-#include "eval/evaluation_world.h"
-#include "eval/object_db_eval.h"
+#include "strata/mapper/eval/accuracy.h"
+#include "strata/change/eval/evaluation_world.h"
+#include "strata/objects/eval/object_db_eval.h"
 
 namespace strata::apps {
 
@@ -50,7 +50,7 @@ struct DemoReport {
 };
 
 /// Writes the report as JSON, atomically: the demo's figures, the evaluation and the change
-/// detection's own members (writeDiffJsonMembers).
+/// detection's own members (diffReportJson) under "change_detection".
 void writeDemoReport(const DemoReport& report, const DiffResult& result, const DiffFiles& files,
                      const DiffRunInfo& info, const std::string& path);
 /// One paragraph for the terminal.

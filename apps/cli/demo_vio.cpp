@@ -5,11 +5,11 @@
 #include <limits>
 #include <optional>
 
-#include "cli/sim_setup.h"
-#include "core/error.h"
-#include "odometry/pipeline/vio_replay.h"
-#include "sim/session/stereo_recording.h"
-#include "trajectory/trajectory_error.h"
+#include "strata/sim/sim_setup.h"
+#include "strata/core/error.h"
+#include "strata/odometry/pipeline/vio_replay.h"
+#include "strata/sim/session/stereo_recording.h"
+#include "strata/trajectory/trajectory_error.h"
 
 namespace strata::apps {
 namespace {
@@ -42,12 +42,12 @@ odometry::ReplayResult runVio(const sim::StereoRecording& recording, const DemoV
 
 /// The fused poses against the truth of the same frames, without alignment.
 void poseErrors(const sim::SimSessionDataset& session, VioSessionResult& r) {
-  std::vector<traj::StampedPose> estimate, truth;
+  std::vector<trajectory::StampedPose> estimate, truth;
   for (std::size_t i = 0; i < session.size(); ++i) {
     estimate.push_back({session.timestamp(i), session.givenPoses()[i]});
     truth.push_back({session.timestamp(i), session.truePoses()[i]});
   }
-  const traj::TrajectoryError e = traj::evaluateTrajectory(estimate, truth, traj::Alignment::kNone);
+  const trajectory::TrajectoryError e = trajectory::evaluateTrajectory(estimate, truth, trajectory::Alignment::kNone);
   r.ate_rmse_m = e.ate_rmse_m;
   r.ate_max_m = e.ate_max_m;
   r.rotation_rmse_deg = e.rotation_rmse_deg;
@@ -57,16 +57,16 @@ void poseErrors(const sim::SimSessionDataset& session, VioSessionResult& r) {
 
 void DemoVioOptions::validate() const {
   if (window < 2) throw InputError("--vio-window must be at least 2");
-  stereoRecordingConfig(width_px, height_px, true).validate();
+  sim::stereoRecordingConfig(width_px, height_px, true).validate();
 }
 
 std::size_t vioFrameCount(const sim::SimSessionDataset& session, const DemoVioOptions& o) {
-  return sim::stereoFrameCount(session, stereoRecordingConfig(o.width_px, o.height_px, true));
+  return sim::stereoFrameCount(session, sim::stereoRecordingConfig(o.width_px, o.height_px, true));
 }
 
 VioSessionResult useVioPoses(sim::SimSessionDataset& session, const DemoVioOptions& o, bool noise,
                              ProgressBar& progress, std::size_t& done) {
-  const sim::StereoRecordingConfig config = stereoRecordingConfig(o.width_px, o.height_px, noise);
+  const sim::StereoRecordingConfig config = sim::stereoRecordingConfig(o.width_px, o.height_px, noise);
   const sim::StereoRecording recording(session, config);
   const odometry::ReplayResult vio = runVio(recording, o, progress, done);
   VioSessionResult r;

@@ -9,8 +9,8 @@
 // frame get no pose and are not fused (counted).
 #include <cstddef>
 
-#include "cli/progress.h"
-#include "sim/session/sim_session.h"
+#include "strata/core/progress.h"
+#include "strata/sim/session/sim_session.h"
 
 namespace strata::apps {
 

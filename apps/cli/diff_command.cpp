@@ -6,10 +6,11 @@
 #include <filesystem>
 
 #include "cli/diff_outputs.h"
-#include "cli/diff_pipeline.h"
+#include "strata/mapper/session_diff.h"
 #include "cli/diff_report.h"
-#include "core/error.h"
-#include "map/map_file.h"
+#include "strata/core/error.h"
+#include "strata/io/open_dataset.h"
+#include "strata/map/map_file.h"
 
 namespace strata::apps {
 namespace {
@@ -87,7 +88,7 @@ MapConfig mapConfigFor(const DiffOptions& o, const std::vector<SessionInput>& in
   for (const SessionInput& input : inputs) {
     if (input.map) return input.map->config();
   }
-  MapConfig config = changeMapConfig(o.voxel_size_m);
+  MapConfig config = change::changeMapConfig(o.voxel_size_m);
   config.weight_mode =
       o.weight == "inv-z2" ? WeightMode::kInverseDepthSquared : WeightMode::kConstant;
   return config;

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "io/dataset.h"
+#include "strata/io/open_dataset.h"
 
 namespace CLI {
 class App;

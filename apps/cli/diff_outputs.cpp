@@ -3,7 +3,7 @@
 #include <filesystem>
 
 #include "cli/diff_overlay.h"
-#include "mesh/ply.h"
+#include "strata/mesh/ply.h"
 
 namespace strata::apps {
 

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "cli/diff_pipeline.h"
+#include "strata/mapper/session_diff.h"
 
 namespace strata::apps {
 

@@ -5,8 +5,8 @@
 #include <cmath>
 
 #include "cli/diff_overlay_raster.h"
-#include "core/error.h"
-#include "io/image_io.h"
+#include "strata/core/error.h"
+#include "strata/io/image_io.h"
 
 namespace strata::apps {
 namespace {

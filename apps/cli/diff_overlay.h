@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "change/objects.h"
-#include "core/types.h"
-#include "mesh/mesh.h"
+#include "strata/change/object_discovery.h"
+#include "strata/core/types.h"
+#include "strata/mesh/mesh.h"
 
 namespace strata::apps {
 

@@ -4,8 +4,8 @@
 #include <vector>
 
 #include "cli/esdf_slice_font.h"
-#include "core/types.h"
-#include "mesh/mesh.h"
+#include "strata/core/types.h"
+#include "strata/mesh/mesh.h"
 
 namespace strata::apps::overlay_detail {
 

@@ -1,95 +1,108 @@
 #include "cli/diff_report.h"
 
-#include "core/json_text.h"
-
 #include <cstdio>
 #include <sstream>
 
-#include "core/atomic_file.h"
+#include "cli/report_json.h"
+#include "strata/core/atomic_file.h"
 
 namespace strata::apps {
 namespace {
 
-std::string vec3(const Eigen::Vector3f& v) {
-  std::ostringstream out;
-  out.precision(4);
-  out << "[" << v.x() << ", " << v.y() << ", " << v.z() << "]";
-  return out.str();
+Json objectJson(const change::DiscoveredObject& o, const std::string& file) {
+  Json j;
+  j["id"] = o.id;
+  j["vertices"] = o.vertex_count;
+  j["triangles"] = o.mesh.triangles.size();
+  j["centroid_m"] = jsonVector(o.centroid);
+  j["bbox_min_m"] = jsonVector(o.bbox.min());
+  j["bbox_max_m"] = jsonVector(o.bbox.max());
+  j["mesh"] = file;
+  return j;
 }
 
-void writeObject(std::ostream& out, const change::DiscoveredObject& o, const std::string& file,
-                 const std::string& pad) {
-  out << pad << "{\"id\": " << o.id << ", \"vertices\": " << o.vertex_count
-      << ", \"triangles\": " << o.mesh.triangles.size() << ", \"centroid_m\": " << vec3(o.centroid)
-      << ", \"bbox_min_m\": " << vec3(o.bbox.min()) << ", \"bbox_max_m\": " << vec3(o.bbox.max())
-      << ", \"mesh\": " << jsonString(file) << "}";
-}
-
-void writeSession(std::ostream& out, std::size_t s, const DiffResult& result,
-                  const DiffFiles& files, const std::string& pad) {
+Json diffSessionJson(std::size_t s, const DiffResult& result, const DiffFiles& files) {
   const DiffSession& r = result.sessions[s];
   const double n = r.frames > 0 ? static_cast<double>(r.frames) : 1.0;
-  out << pad << "{\"session\": " << s << ", \"source\": " << jsonString(r.source)
-      << ", \"frames\": " << r.frames << ", \"fuse_wall_ms_per_frame\": " << r.fuse_wall_ms / n
-      << ", \"fuse_device_ms_per_frame\": " << r.fuse_device_ms / n
-      << ", \"update_ms\": " << r.update.stages.total() << ", \"blocks\": " << r.update.blocks
-      << ", \"dynamic_voxels\": " << r.update.dynamic_voxels
-      << ", \"surface_faces\": " << r.object_stats.faces
-      << ", \"dynamic_faces\": " << r.object_stats.dynamic_faces_refined
-      << ", \"dropped_planar\": " << r.object_stats.dropped_planar
-      << ", \"dropped_small\": " << r.object_stats.dropped_small
-      << ", \"overlay\": " << jsonString(files.overlays[s]) << ",\n"
-      << pad << " \"objects\": [";
+  Json objects = Json::array();
   for (std::size_t k = 0; k < r.objects.size(); ++k) {
-    out << (k ? ",\n" : "\n");
-    writeObject(out, r.objects[k], files.object_meshes[s][k], pad + "   ");
+    objects.push_back(objectJson(r.objects[k], files.object_meshes[s][k]));
   }
-  out << (r.objects.empty() ? "]}" : "\n" + pad + " ]}");
+  Json j;
+  j["session"] = s;
+  j["source"] = r.source;
+  j["frames"] = r.frames;
+  j["fuse_wall_ms_per_frame"] = r.fuse_wall_ms / n;
+  j["fuse_device_ms_per_frame"] = r.fuse_device_ms / n;
+  j["update_ms"] = r.update.stages.total();
+  j["blocks"] = r.update.blocks;
+  j["dynamic_voxels"] = r.update.dynamic_voxels;
+  j["surface_faces"] = r.object_stats.faces;
+  j["dynamic_faces"] = r.object_stats.dynamic_faces_refined;
+  j["dropped_planar"] = r.object_stats.dropped_planar;
+  j["dropped_small"] = r.object_stats.dropped_small;
+  j["overlay"] = files.overlays[s];
+  j["objects"] = std::move(objects);
+  return j;
+}
+
+Json changeConfigJson(const change::ChangeConfig& c) {
+  Json j;
+  j["min_weight"] = jsonFloat(c.min_weight);
+  j["difference_threshold_m"] = jsonFloat(c.difference_threshold_m);
+  j["erosion_kernel_voxels"] = c.erosion_kernel_voxels;
+  j["dilation_kernel_voxels"] = c.dilation_kernel_voxels;
+  j["merge_close_m"] = jsonFloat(c.merge_close_m);
+  return j;
+}
+
+Json objectConfigJson(const change::ObjectConfig& o) {
+  Json j;
+  j["region_neighbour_angle_deg"] = jsonFloat(o.region_neighbour_angle_deg);
+  j["region_mean_angle_deg"] = jsonFloat(o.region_mean_angle_deg);
+  j["region_dynamic_share"] = jsonFloat(o.region_dynamic_share);
+  j["component_merge_gap_voxels"] = jsonFloat(o.component_merge_gap_voxels);
+  j["min_singular_value_ratio"] = jsonFloat(o.min_singular_value_ratio);
+  j["min_vertices"] = o.min_vertices;
+  return j;
+}
+
+/// Adds the members diffReportJson describes to `j`.
+void addDiffMembers(const DiffResult& result, const DiffFiles& files, const DiffRunInfo& info,
+                    Json& j) {
+  Json static_mesh;
+  static_mesh["vertices"] = result.static_mesh.vertices.size();
+  static_mesh["triangles"] = result.static_mesh.triangles.size();
+  static_mesh["mesh"] = files.static_mesh;
+  Json sessions = Json::array();
+  for (std::size_t s = 0; s < result.sessions.size(); ++s) {
+    sessions.push_back(diffSessionJson(s, result, files));
+  }
+  j["change_config"] = changeConfigJson(info.change);
+  j["object_config"] = objectConfigJson(info.objects);
+  j["static_mesh"] = std::move(static_mesh);
+  j["sessions"] = std::move(sessions);
 }
 
 }  // namespace
 
-std::string jsonString(const std::string& text) { return jsonQuoted(text); }
-
-void writeDiffJsonMembers(std::ostream& out, const DiffResult& result, const DiffFiles& files,
-                          const DiffRunInfo& info, int indent) {
-  const std::string pad(static_cast<std::size_t>(indent), ' ');
-  const change::ChangeConfig& c = info.change;
-  const change::ObjectConfig& o = info.objects;
-  out << pad << "\"change_config\": {\"min_weight\": " << c.min_weight
-      << ", \"difference_threshold_m\": " << c.difference_threshold_m
-      << ", \"erosion_kernel_voxels\": " << c.erosion_kernel_voxels
-      << ", \"dilation_kernel_voxels\": " << c.dilation_kernel_voxels
-      << ", \"merge_close_m\": " << c.merge_close_m << "},\n"
-      << pad
-      << "\"object_config\": {\"region_neighbour_angle_deg\": " << o.region_neighbour_angle_deg
-      << ", \"region_mean_angle_deg\": " << o.region_mean_angle_deg
-      << ", \"region_dynamic_share\": " << o.region_dynamic_share
-      << ", \"component_merge_gap_voxels\": " << o.component_merge_gap_voxels
-      << ", \"min_singular_value_ratio\": " << o.min_singular_value_ratio
-      << ", \"min_vertices\": " << o.min_vertices << "},\n"
-      << pad << "\"static_mesh\": {\"vertices\": " << result.static_mesh.vertices.size()
-      << ", \"triangles\": " << result.static_mesh.triangles.size()
-      << ", \"mesh\": " << jsonString(files.static_mesh) << "},\n"
-      << pad << "\"sessions\": [\n";
-  for (std::size_t s = 0; s < result.sessions.size(); ++s) {
-    writeSession(out, s, result, files, pad + "  ");
-    out << (s + 1 < result.sessions.size() ? ",\n" : "\n");
-  }
-  out << pad << "]";
+std::string diffReportJson(const DiffResult& result, const DiffFiles& files,
+                           const DiffRunInfo& info) {
+  Json j = Json::object();
+  addDiffMembers(result, files, info, j);
+  return jsonText(j);
 }
 
 void writeDiffReport(const std::string& path, const DiffResult& result, const DiffFiles& files,
                      const DiffRunInfo& info) {
-  std::ostringstream out;
-  out.precision(6);
-  out << "{\n  \"command\": \"diff\",\n  \"device\": " << jsonString(info.device)
-      << ",\n  \"map\": " << jsonString(info.map_config) << ",\n  \"total_s\": " << info.total_s
-      << ",\n  \"objects_s\": " << result.objects_s << ",\n";
-  writeDiffJsonMembers(out, result, files, info, 2);
-  out << "\n}\n";
-  const std::string text = out.str();
-  writeFileAtomically(path, std::vector<std::uint8_t>(text.begin(), text.end()));
+  Json j;
+  j["command"] = "diff";
+  j["device"] = info.device;
+  j["map"] = info.map_config;
+  j["total_s"] = info.total_s;
+  j["objects_s"] = result.objects_s;
+  addDiffMembers(result, files, info, j);
+  writeTextAtomically(path, jsonFileText(j));
 }
 
 std::string summarizeDiff(const DiffResult& result, const DiffRunInfo& info,

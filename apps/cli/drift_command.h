@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string>
 
-#include "sim/session/drifted_session.h"
+#include "strata/sim/session/drifted_session.h"
 
 namespace CLI {
 class App;

@@ -7,11 +7,13 @@
 #include <sstream>
 
 #include "cli/esdf_slice.h"
-#include "core/error.h"
-#include "mapper/mapper.h"
-#include "io/image_io.h"
-#include "esdf/esdf.h"
-#include "map/map_file.h"
+#include "strata/core/clock.h"
+#include "strata/core/error.h"
+#include "strata/mapper/mapper.h"
+#include "strata/io/image_io.h"
+#include "strata/esdf/esdf.h"
+#include "strata/esdf/esdf_compare.h"
+#include "strata/map/map_file.h"
 
 namespace strata::apps {
 namespace {
@@ -19,12 +21,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 // The ESDF's tolerance: share of voxels off by more than one voxel size, mean error in voxels.
-constexpr double kMaxShareOverVoxel = 0.002;
-constexpr double kMaxMeanErrorVoxels = 0.1;
-
-double msSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 std::size_t knownVoxels(const EsdfMap& map) {
   std::size_t known = 0;
@@ -99,38 +95,15 @@ int runChecked(const EsdfOptions& o) {
     s << " Against the C++ reference (" << reference_ms
       << " ms): " << (a.compared > 0 ? 100.0 * a.over_voxel / a.compared : 0.0) << " % of "
       << a.compared
-      << " voxels within the max distance differ by more than one voxel (limit 0.20 %), mean "
-      << a.mean_abs_voxels << " voxel (limit 0.10): " << (ok ? "ok" : "FAILED") << ".";
+      << " voxels within the max distance differ by more than one voxel (limit "
+      << 100.0 * kEsdfMaxShareOverVoxel << " %), mean " << a.mean_abs_voxels << " voxel (limit "
+      << kEsdfMaxMeanErrorVoxels << "): " << (ok ? "ok" : "FAILED") << ".";
   }
   std::printf("%s\n", s.str().c_str());
   return ok ? 0 : 1;
 }
 
 }  // namespace
-
-bool EsdfAgreement::ok() const {
-  return compared == 0 || (static_cast<double>(over_voxel) <= kMaxShareOverVoxel * compared &&
-                           mean_abs_voxels < kMaxMeanErrorVoxels);
-}
-
-EsdfAgreement compareEsdfWithReference(const EsdfMap& esdf, const EsdfMap& reference) {
-  EsdfAgreement a;
-  double sum = 0.0;
-  for (const auto& [b, block] : reference.blocks) {
-    const auto it = esdf.blocks.find(b);
-    for (int i = 0; i < kVoxelsPerBlock; ++i) {
-      if (!esdfObserved(block[i]) || !esdfHasSite(block[i])) continue;
-      // A block the ESDF lacks counts with distance 0 (far off unless it is a site).
-      const float d = it == esdf.blocks.end() ? 0.0f : it->second[i].distance_m;
-      const double error = std::fabs(d - block[i].distance_m) / reference.voxel_size_m;
-      ++a.compared;
-      sum += error;
-      a.over_voxel += error > 1.0 ? 1 : 0;
-    }
-  }
-  a.mean_abs_voxels = a.compared > 0 ? sum / static_cast<double>(a.compared) : 0.0;
-  return a;
-}
 
 CLI::App* addEsdfCommand(CLI::App& app, EsdfOptions& o) {
   CLI::App* esdf = app.add_subcommand("esdf", "Compute a saved map's ESDF, write a slice picture");

@@ -7,10 +7,6 @@
 namespace CLI {
 class App;
 }
-namespace strata {
-struct EsdfMap;
-}
-
 namespace strata::apps {
 
 struct EsdfOptions {
@@ -24,17 +20,6 @@ struct EsdfOptions {
   bool voxel_size_check = false;
   std::string device;
 };
-
-/// How a computed ESDF agrees with the reference (computeEsdfReference) on the voxels the
-/// reference observes with a site within the max distance.
-struct EsdfAgreement {
-  std::size_t compared = 0;
-  std::size_t over_voxel = 0;  // |difference| above one voxel size
-  double mean_abs_voxels = 0.0;
-  /// The ESDF's tolerance: at most 0.2 % over one voxel, mean below 0.1 voxel.
-  bool ok() const;
-};
-EsdfAgreement compareEsdfWithReference(const EsdfMap& esdf, const EsdfMap& reference);
 
 /// Registers `esdf` on `app`; the options are filled when it parses.
 CLI::App* addEsdfCommand(CLI::App& app, EsdfOptions& options);

@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "cli/esdf_slice_legend.h"
-#include "core/error.h"
-#include "io/image_io.h"
+#include "strata/core/error.h"
+#include "strata/io/image_io.h"
 
 namespace strata::apps {
 namespace {

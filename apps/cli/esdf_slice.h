@@ -8,8 +8,8 @@
 #include <string>
 
 #include "cli/esdf_slice_font.h"
-#include "core/types.h"
-#include "map/esdf_layer.h"
+#include "strata/core/types.h"
+#include "strata/map/esdf_layer.h"
 
 namespace strata::apps {
 

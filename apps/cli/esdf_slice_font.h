@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string>
 
-#include "core/types.h"
+#include "strata/core/types.h"
 
 namespace strata::apps {
 

@@ -4,9 +4,9 @@
 #include <cstdio>
 
 #include "cli/trajectory_plot.h"
-#include "core/atomic_file.h"
-#include "core/error.h"
-#include "trajectory/trajectory_error.h"
+#include "strata/core/atomic_file.h"
+#include "strata/core/error.h"
+#include "strata/trajectory/trajectory_error.h"
 
 namespace strata::apps {
 
@@ -29,17 +29,17 @@ CLI::App* addEvalTrajectoryCommand(CLI::App& app, EvalTrajectoryOptions& o) {
 
 int runEvalTrajectory(const EvalTrajectoryOptions& o) {
   try {
-    traj::TrajectoryErrorOptions options;
-    options.alignment = traj::parseAlignment(o.alignment);
+    trajectory::TrajectoryErrorOptions options;
+    options.alignment = trajectory::parseAlignment(o.alignment);
     options.max_time_difference_s = o.max_time_difference_s;
     options.rpe_segment_m = o.rpe_segment_m;
     const auto estimate = tum::readTrajectory(o.estimate_path);
     const auto truth = tum::readTrajectory(o.truth_path);
-    const traj::TrajectoryError e = traj::evaluateTrajectory(estimate, truth, options);
+    const trajectory::TrajectoryError e = trajectory::evaluateTrajectory(estimate, truth, options);
     std::printf("%zu of %zu poses matched over %.2f s and %.3f m of true path (alignment %s, "
                 "scale %.4f)\n",
                 e.matched, e.estimated, e.duration_s, e.path_length_m,
-                traj::alignmentName(e.alignment), e.scale);
+                trajectory::alignmentName(e.alignment), e.scale);
     std::printf("ATE: RMSE %.4f m (%.2f %% of the path), mean %.4f, median %.4f, max %.4f m; "
                 "rotation RMSE %.3f deg\n",
                 e.ate_rmse_m, e.path_length_m > 0 ? 100.0 * e.ate_rmse_m / e.path_length_m : 0.0,
@@ -51,7 +51,7 @@ int runEvalTrajectory(const EvalTrajectoryOptions& o) {
       std::printf("RPE: none (the true path is shorter than one %.2f m segment)\n", e.rpe_segment_m);
     }
     if (!o.json_path.empty()) {
-      const std::string json = traj::trajectoryErrorJson(e) + "\n";
+      const std::string json = trajectory::trajectoryErrorJson(e) + "\n";
       writeFileAtomically(o.json_path, std::vector<std::uint8_t>(json.begin(), json.end()));
       std::printf("Wrote %s\n", o.json_path.c_str());
     }

@@ -9,12 +9,12 @@
 #include <vector>
 
 #include "cli/explore_outputs.h"
-#include "cli/sim_setup.h"
-#include "core/error.h"
-#include "explore/dead_end.h"
-#include "explore/history_planner.h"
-#include "explore/nbvp_planner.h"
-#include "mesh/ply.h"
+#include "strata/sim/sim_setup.h"
+#include "strata/core/error.h"
+#include "strata/explore/dead_end.h"
+#include "strata/explore/history_planner.h"
+#include "strata/explore/nbvp_planner.h"
+#include "strata/mesh/ply.h"
 
 namespace strata::apps {
 namespace {
@@ -75,8 +75,6 @@ explore::ExplorationConfig loopConfig(const ExploreOptions& o) {
   c.camera_width_px = o.camera_width_px;
   c.camera_height_px = o.camera_height_px;
   c.eval_period_s = o.eval_period_s;
-  c.surface_hits = !o.no_surface_hits;
-  c.inflight_checks = !o.no_inflight_checks;
   c.seed = o.seed;
   c.validate();
   return c;
@@ -157,7 +155,7 @@ int runChecked(const ExploreOptions& o) {
   }
   const explore::ExplorationConfig config = loopConfig(o);
   const std::optional<Eigen::Vector3f> tree_box = parseTreeBox(o.tree_box);
-  const auto world = loadWorld(o.world_path, 0, 1);
+  const auto world = sim::loadWorld(o.world_path, 0, 1);
   const Eigen::Vector3f start = o.start.empty()
                                     ? explore::defaultStart(*world, kDefaultStartHeightM, config)
                                     : parseStart(o.start);
@@ -206,11 +204,6 @@ CLI::App* addExploreCommand(CLI::App& app, ExploreOptions& o) {
                   "each planner took to leave it (worlds/deadend.yaml: 10.1,3,32.1,5)");
   cmd->add_option("--dead-end-mouth", o.dead_end_mouth,
                   "X,Y: where the dead end opens (metres); default: its point nearest the start");
-  cmd->add_flag("--no-surface-hits", o.no_surface_hits,
-                "Check paths against the ESDF alone, without depth endpoints as obstacles");
-  cmd->add_flag("--no-inflight-checks", o.no_inflight_checks,
-                "Fly every path as planned, without checking the path ahead at each frame and "
-                "braking when it is blocked");
   cmd->add_option("--tree-box", o.tree_box,
                   "X,Y,Z: half extents of the local tree's sampling box around the robot, metres "
                   "(default 4,4,0.6)");

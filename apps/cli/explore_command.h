@@ -23,8 +23,6 @@ struct ExploreOptions {
   double start_yaw_deg = 0.0;  // heading at the start, about world z from +x
   std::string dead_end;  // "X0,Y0,X1,Y1" metres: a dead end from above to time the escape from
   std::string dead_end_mouth;    // "X,Y" metres: where it opens; "" = its point nearest the start
-  bool no_surface_hits = false;  // ExplorationConfig::surface_hits off
-  bool no_inflight_checks = false;  // ExplorationConfig::inflight_checks off
   std::string tree_box;  // "X,Y,Z" half extents of the local tree's box, metres; "" = default
   int camera_width_px = 160;
   int camera_height_px = 120;

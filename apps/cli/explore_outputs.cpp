@@ -6,70 +6,74 @@
 #include <sstream>
 
 #include "cli/esdf_slice.h"
-#include "core/atomic_file.h"
-#include "core/json_text.h"
-#include "core/statistics.h"
-#include "explore/dead_end.h"
+#include "cli/report_json.h"
+#include "strata/core/atomic_file.h"
+#include "strata/core/statistics.h"
+#include "strata/explore/dead_end.h"
 
 namespace strata::apps {
 namespace {
 
-std::string optionalNumber(const std::optional<double>& value) {
-  return value ? jsonNumber(*value) : std::string("null");
+Json optionalNumber(const std::optional<double>& value) {
+  return value ? Json(*value) : Json(nullptr);
 }
 
-std::string deadEndJson(const explore::ExplorationResult& r, const explore::DeadEnd& dead_end) {
+Json deadEndJson(const explore::ExplorationResult& r, const explore::DeadEnd& dead_end) {
   const explore::DeadEndEscape e =
       explore::analyseDeadEnd(r.flown_time_s, r.flown_W, dead_end, r.sim_time_s);
-  std::ostringstream j;
-  j << "{\"entered\": " << (e.entered ? "true" : "false")
-    << ", \"entered_s\": " << (e.entered ? jsonNumber(e.entered_s) : "null")
-    << ", \"deepest_s\": " << (e.entered ? jsonNumber(e.deepest_s) : "null")
-    << ", \"deepest_m\": " << jsonNumber(e.deepest_m)
-    << ", \"left_s\": " << optionalNumber(e.left_s)
-    << ", \"escape_s\": " << optionalNumber(e.escape_s)
-    << ", \"after_deepest_s\": " << jsonNumber(e.after_deepest_s) << "}";
-  return j.str();
+  Json j;
+  j["entered"] = e.entered;
+  j["entered_s"] = e.entered ? Json(e.entered_s) : Json(nullptr);
+  j["deepest_s"] = e.entered ? Json(e.deepest_s) : Json(nullptr);
+  j["deepest_m"] = jsonFloat(e.deepest_m);
+  j["left_s"] = optionalNumber(e.left_s);
+  j["escape_s"] = optionalNumber(e.escape_s);
+  j["after_deepest_s"] = e.after_deepest_s;
+  return j;
 }
 
 /// Each collision's closest approach: time, position and true clearance.
-std::string collisionEventsJson(const explore::ExplorationResult& r) {
-  std::ostringstream j;
-  for (std::size_t i = 0; i < r.collision_events.size(); ++i) {
-    const explore::CollisionEvent& e = r.collision_events[i];
-    j << (i ? ", " : "") << "{\"time_s\": " << jsonNumber(e.time_s) << ", \"p_W\": ["
-      << jsonNumber(e.p_W.x()) << ", " << jsonNumber(e.p_W.y()) << ", " << jsonNumber(e.p_W.z())
-      << "], \"clearance_m\": " << jsonNumber(e.clearance_m) << "}";
+Json collisionEventsJson(const explore::ExplorationResult& r) {
+  Json events = Json::array();
+  for (const explore::CollisionEvent& e : r.collision_events) {
+    Json j;
+    j["time_s"] = e.time_s;
+    j["p_W"] = jsonVector(e.p_W);
+    j["clearance_m"] = jsonFloat(e.clearance_m);
+    events.push_back(std::move(j));
   }
-  return j.str();
+  return events;
 }
 
-std::string runJson(const explore::ExplorationResult& r, const std::string& dead_end_json) {
+/// `dead_end`: null without one.
+Json runJson(const explore::ExplorationResult& r, Json dead_end) {
   const StepTimes times = stepTimes(r);
   const double t90 = timeToFraction(r, 0.9);
   std::size_t global_steps = 0;
   for (const auto& s : r.steps) global_steps += s.mode == "global" ? 1 : 0;
-  std::ostringstream j;
-  j << "{\"explored_fraction\": " << jsonNumber(r.explored_fraction)
-    << ", \"time_to_90_s\": " << (t90 < 0.0 ? "null" : jsonNumber(t90))
-    << ", \"collisions\": " << r.collisions() << ", \"collision_events\": ["
-    << collisionEventsJson(r) << "]"
-    << ", \"min_clearance_m\": " << jsonNumber(r.min_clearance_m)
-    << ", \"hit_obstacles\": " << r.hit_obstacles
-    << ", \"spheres_refused_by_hits\": " << r.spheres_refused_by_hits
-    << ", \"inflight_checks\": " << r.inflight_checks << ", \"brakes\": " << r.brakes
-    << ", \"inflight_ms\": " << jsonNumber(r.inflight_ms)
-    << ", \"path_length_m\": " << jsonNumber(r.path_length_m)
-    << ", \"step_ms_median\": " << jsonNumber(times.median_ms)
-    << ", \"step_ms_p95\": " << jsonNumber(times.p95_ms) << ", \"steps\": " << r.steps.size()
-    << ", \"global_steps\": " << global_steps << ", \"sim_time_s\": " << jsonNumber(r.sim_time_s)
-    << ", \"wall_s\": " << jsonNumber(r.wall_s)
-    << ", \"stop_reason\": " << jsonQuoted(r.stop_reason)
-    << ", \"reachable_voxels\": " << r.reachable_voxels
-    << ", \"start_clearing_fraction\": " << jsonNumber(r.start_clearing_fraction);
-  if (!dead_end_json.empty()) j << ", \"dead_end\": " << dead_end_json;
-  j << "}";
-  return j.str();
+  Json j;
+  j["explored_fraction"] = r.explored_fraction;
+  j["time_to_90_s"] = t90 < 0.0 ? Json(nullptr) : Json(t90);
+  j["collisions"] = r.collisions();
+  j["collision_events"] = collisionEventsJson(r);
+  j["min_clearance_m"] = jsonFloat(r.min_clearance_m);
+  j["hit_obstacles"] = r.hit_obstacles;
+  j["spheres_refused_by_hits"] = r.spheres_refused_by_hits;
+  j["inflight_checks"] = r.inflight_checks;
+  j["brakes"] = r.brakes;
+  j["inflight_ms"] = r.inflight_ms;
+  j["path_length_m"] = r.path_length_m;
+  j["step_ms_median"] = times.median_ms;
+  j["step_ms_p95"] = times.p95_ms;
+  j["steps"] = r.steps.size();
+  j["global_steps"] = global_steps;
+  j["sim_time_s"] = r.sim_time_s;
+  j["wall_s"] = r.wall_s;
+  j["stop_reason"] = r.stop_reason;
+  j["reachable_voxels"] = r.reachable_voxels;
+  j["start_clearing_fraction"] = r.start_clearing_fraction;
+  if (!dead_end.is_null()) j["dead_end"] = std::move(dead_end);
+  return j;
 }
 
 }  // namespace
@@ -116,18 +120,19 @@ void writeExploreReport(const std::string& path, const std::string& world,
                         const std::vector<explore::ExplorationResult>& results,
                         const explore::ExplorationConfig& config, const Eigen::Vector3f& start_W,
                         unsigned long long seed, const std::optional<explore::DeadEnd>& dead_end) {
-  std::ostringstream j;
-  j << "{\n  \"world\": " << jsonQuoted(world) << ",\n  \"seed\": " << seed << ",\n  \"start\": ["
-    << jsonNumber(start_W.x()) << ", " << jsonNumber(start_W.y()) << ", " << jsonNumber(start_W.z())
-    << "],\n  \"voxel_size_m\": " << jsonNumber(config.voxel_size_m)
-    << ",\n  \"time_limit_s\": " << jsonNumber(config.time_limit_s) << ",\n  \"camera\": ["
-    << config.camera_width_px << ", " << config.camera_height_px << "],\n  \"planners\": {";
-  for (std::size_t i = 0; i < results.size(); ++i) {
-    j << (i ? ",\n    " : "\n    ") << jsonQuoted(results[i].planner) << ": "
-      << runJson(results[i], dead_end ? deadEndJson(results[i], *dead_end) : "");
+  Json planners = Json::object();
+  for (const explore::ExplorationResult& r : results) {
+    planners[r.planner] = runJson(r, dead_end ? deadEndJson(r, *dead_end) : Json(nullptr));
   }
-  j << "\n  }\n}\n";
-  writeTextAtomically(path, j.str());
+  Json j;
+  j["world"] = world;
+  j["seed"] = seed;
+  j["start"] = jsonVector(start_W);
+  j["voxel_size_m"] = jsonFloat(config.voxel_size_m);
+  j["time_limit_s"] = config.time_limit_s;
+  j["camera"] = Json::array({config.camera_width_px, config.camera_height_px});
+  j["planners"] = std::move(planners);
+  writeTextAtomically(path, jsonFileText(j));
 }
 
 }  // namespace strata::apps

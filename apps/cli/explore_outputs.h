@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "explore/dead_end.h"
-#include "explore/exploration_loop.h"
+#include "strata/explore/dead_end.h"
+#include "strata/explore/exploration_loop.h"
 
 namespace strata::apps {
 

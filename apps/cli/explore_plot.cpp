@@ -6,7 +6,7 @@
 
 #include "cli/esdf_slice.h"
 #include "cli/explore_outputs.h"
-#include "io/image_io.h"
+#include "strata/io/image_io.h"
 
 namespace strata::apps {
 namespace {

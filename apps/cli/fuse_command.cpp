@@ -6,7 +6,7 @@
 #include <filesystem>
 
 #include "cli/fuse_session.h"
-#include "core/error.h"
+#include "strata/core/error.h"
 
 namespace strata::apps {
 

@@ -3,8 +3,8 @@
 // TSDF map on the device, then write the mesh, the map and a rendered view.
 #include <string>
 
-#include "io/dataset.h"
-#include "map/map_config.h"
+#include "strata/io/open_dataset.h"
+#include "strata/map/map_config.h"
 
 namespace CLI {
 class App;

@@ -9,20 +9,22 @@
 #include <sstream>
 
 #include "cli/esdf_slice.h"
-#include "cli/progress.h"
+#include "strata/core/progress.h"
 #include "cli/shaded_view.h"
-#include "core/atomic_file.h"
-#include "core/error.h"
-#include "io/tum_format.h"
-#include "eval/accuracy.h"
-#include "integrate/tsdf_integration.h"
-#include "io/image_io.h"
-#include "map/map_file.h"
-#include "mesh/extract_mesh.h"
-#include "mesh/ply.h"
-#include "raycast/raycast.h"
-#include "sim/analytic_dataset.h"
-#include "trajectory/trajectory_error.h"
+#include "strata/core/atomic_file.h"
+#include "strata/core/clock.h"
+#include "strata/core/error.h"
+#include "strata/io/tum_format.h"
+#include "strata/mapper/eval/accuracy.h"
+#include "strata/integrate/tsdf_integration.h"
+#include "strata/io/image_io.h"
+#include "strata/map/map_file.h"
+#include "strata/mesh/extract_mesh.h"
+#include "strata/mesh/ply.h"
+#include "strata/raycast/raycast.h"
+#include "strata/sim/analytic_dataset.h"
+#include "strata/trajectory/trajectory_error.h"
+#include "strata/io/tum_writer.h"
 
 namespace strata::apps {
 namespace {
@@ -83,8 +85,7 @@ bool FuseSession::fuseFrame(const RgbdFrame& frame) {
   } else {
     const auto start = std::chrono::steady_clock::now();
     integrateFrameReference(map_, frame, dataset_->intrinsics());
-    reference_ms_ += std::chrono::duration<double, std::milli>(
-                         std::chrono::steady_clock::now() - start).count();
+    reference_ms_ += msSince(start);
   }
   last_pose_ = frame.T_W_C;
   return true;
@@ -114,9 +115,6 @@ bool FuseSession::trackFrame(const RgbdFrame& frame) {
   totals_.touched_blocks += stats.touched_blocks;
   fusion_wall_ms_ += stats.wall_ms;
   if (options_.esdf) updateEsdf();
-  char stamp[32];
-  std::snprintf(stamp, sizeof(stamp), "%.6f ", frame.timestamp_s);
-  trajectory_ += stamp + tum::poseToTum(result.track.T_W_C) + "\n";
   estimate_.push_back({frame.timestamp_s, result.track.T_W_C});
   dataset_poses_.push_back({frame.timestamp_s, frame.T_W_C});
   last_pose_ = result.track.T_W_C;
@@ -125,10 +123,8 @@ bool FuseSession::trackFrame(const RgbdFrame& frame) {
 
 bool FuseSession::writeTrajectory() {
   try {
-    const std::string text = "# timestamp tx ty tz qx qy qz qw (camera to world, strata fuse "
-                             "--track)\n" + trajectory_;
-    writeFileAtomically(options_.trajectory_path,
-                        std::vector<std::uint8_t>(text.begin(), text.end()));
+    writeTumTrajectory(options_.trajectory_path, estimate_,
+                       {"timestamp tx ty tz qx qy qz qw (camera to world, strata fuse --track)"});
   } catch (const Error& e) {
     std::fprintf(stderr, "strata fuse: the trajectory was not written: %s\n", e.what());
     return false;
@@ -156,8 +152,8 @@ std::string FuseSession::trackingSummary() const {
   s << ".";
   if (estimate_.size() >= 3) {
     // NOTE: the dataset's own poses (ignored by tracking after the first frame) as the truth.
-    const traj::TrajectoryError error =
-        traj::evaluateTrajectory(estimate_, dataset_poses_, traj::Alignment::kSE3);
+    const trajectory::TrajectoryError error =
+        trajectory::evaluateTrajectory(estimate_, dataset_poses_, trajectory::Alignment::kSE3);
     s.precision(1);
     s << " ATE against the dataset's poses (SE(3) aligned, " << error.matched << " poses): RMSE "
       << error.ate_rmse_m * 1e3 << " mm, max " << error.ate_max_m * 1e3 << " mm.";

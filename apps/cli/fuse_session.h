@@ -5,12 +5,12 @@
 #include <vector>
 
 #include "cli/fuse_command.h"
-#include "io/dataset.h"
-#include "io/tum_format.h"
-#include "mapper/mapper.h"
-#include "map/tsdf_map.h"
-#include "mesh/mesh.h"
-#include "vk/vk.h"
+#include "strata/io/open_dataset.h"
+#include "strata/io/tum_format.h"
+#include "strata/mapper/mapper.h"
+#include "strata/map/tsdf_map.h"
+#include "strata/mesh/mesh.h"
+#include "strata/vk/vk.h"
 
 namespace strata::sim {
 class AnalyticDataset;
@@ -77,7 +77,6 @@ class FuseSession {
   double track_equations_ms_ = 0.0;
   int track_iterations_ = 0;
   double fusion_wall_ms_ = 0.0;
-  std::string trajectory_;  // TUM lines of the fused frames
   std::vector<tum::TimedPose> estimate_, dataset_poses_;  // of the fused frames, for the ATE
 };
 

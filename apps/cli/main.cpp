@@ -19,8 +19,8 @@
 #include "cli/select_command.h"
 #include "cli/sim_command.h"
 #include "cli/topo_command.h"
-#include "core/error.h"
-#include "vk/vk.h"
+#include "strata/core/error.h"
+#include "strata/vk/vk.h"
 
 namespace {
 
@@ -40,7 +40,7 @@ int runDefault() {
   std::printf(
       "strata: no command given; running the multi-session demo on the shipped room "
       "(see `strata --help` for fuse, sim, demo, diff, drift, mesh, esdf, select, eval-trajectory, "
-      "map, odometry, align, objects, plan, topo, devices)\n");
+      "map, odometry, align, objects, plan, topo, explore, devices)\n");
   return strata::apps::runDemo(strata::apps::DemoOptions{});
 }
 

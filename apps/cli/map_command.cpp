@@ -5,9 +5,9 @@
 #include <optional>
 
 #include "cli/map_info.h"
-#include "cli/progress.h"
-#include "core/error.h"
-#include "store/session_import.h"
+#include "strata/core/progress.h"
+#include "strata/core/error.h"
+#include "strata/store/session_import.h"
 
 namespace strata::apps {
 

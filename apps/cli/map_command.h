@@ -1,5 +1,5 @@
 #pragma once
-// `strata map import|info|export`: the map database of many sessions (host/store, docs/store.md).
+// `strata map import|info|export`: the map database of many sessions (src/strata/store, docs/store.md).
 //   strata map import SESSION_DIR... --db map.sqlite [--keyframe-every N] [--keyframe-distance-m D]
 //   strata map info --db map.sqlite [--json] [--verify]
 //   strata map export --db map.sqlite --out DIR

@@ -3,8 +3,8 @@
 #include <cstdarg>
 #include <cstdio>
 
-#include "core/json_text.h"
-#include "store/schema.h"
+#include "cli/report_json.h"
+#include "strata/store/schema.h"
 
 namespace strata::apps {
 
@@ -30,6 +30,33 @@ const char* problemName(store::ResourceProblem::Kind kind) {
       return "checksum_changed";
   }
   return "?";
+}
+
+Json sessionSummaryJson(const store::SessionSummary& s) {
+  Json j;
+  j["id"] = s.session.id;
+  j["name"] = s.session.name;
+  j["source_folder"] = s.session.source_folder;
+  j["aligned"] = s.session.aligned;
+  j["keyframes"] = s.keyframes;
+  j["optimised_keyframes"] = s.optimised_keyframes;
+  j["odometry_edges"] = s.odometry_edges;
+  j["loop_edges"] = s.loop_edges;
+  j["prior_edges"] = s.prior_edges;
+  j["resources"] = s.resources;
+  j["resource_bytes"] = s.resource_bytes;
+  j["path_length_m"] = s.path_length_m;
+  j["first_timestamp_s"] = s.first_timestamp_s;
+  j["last_timestamp_s"] = s.last_timestamp_s;
+  return j;
+}
+
+Json problemJson(const store::ResourceProblem& p) {
+  Json j;
+  j["resource"] = p.resource.id;
+  j["kind"] = problemName(p.kind);
+  j["message"] = p.message;
+  return j;
 }
 
 }  // namespace
@@ -68,36 +95,18 @@ std::string mapInfoTable(const std::string& db_path,
 std::string mapInfoJson(const std::string& db_path,
                         const std::vector<store::SessionSummary>& sessions,
                         const std::vector<store::ResourceProblem>& problems, bool verified) {
-  std::string out =
-      "{\n  \"database\": " + jsonQuoted(db_path) +
-      format(",\n  \"schema_version\": %d,\n  \"sessions\": [", store::kSchemaVersion);
-  for (std::size_t i = 0; i < sessions.size(); ++i) {
-    const auto& s = sessions[i];
-    out += std::string(i == 0 ? "\n" : ",\n") + "    {\"id\": " + std::to_string(s.session.id) +
-           ", \"name\": " + jsonQuoted(s.session.name) +
-           ", \"source_folder\": " + jsonQuoted(s.session.source_folder) +
-           format(
-               ", \"aligned\": %s, \"keyframes\": %zu, \"optimised_keyframes\": %zu, "
-               "\"odometry_edges\": %zu, \"loop_edges\": %zu, \"prior_edges\": %zu, "
-               "\"resources\": %zu, \"resource_bytes\": %llu, \"path_length_m\": %.6f, "
-               "\"first_timestamp_s\": %.6f, \"last_timestamp_s\": %.6f}",
-               s.session.aligned ? "true" : "false", s.keyframes, s.optimised_keyframes,
-               s.odometry_edges, s.loop_edges, s.prior_edges, s.resources,
-               static_cast<unsigned long long>(s.resource_bytes), s.path_length_m,
-               s.first_timestamp_s, s.last_timestamp_s);
-  }
-  out += sessions.empty() ? "]" : "\n  ]";
+  Json rows = Json::array();
+  for (const auto& s : sessions) rows.push_back(sessionSummaryJson(s));
+  Json j;
+  j["database"] = db_path;
+  j["schema_version"] = store::kSchemaVersion;
+  j["sessions"] = std::move(rows);
   if (verified) {
-    out += ",\n  \"resource_problems\": [";
-    for (std::size_t i = 0; i < problems.size(); ++i) {
-      out += std::string(i == 0 ? "\n" : ",\n") +
-             "    {\"resource\": " + std::to_string(problems[i].resource.id) + ", \"kind\": \"" +
-             problemName(problems[i].kind) + "\", \"message\": " + jsonQuoted(problems[i].message) +
-             "}";
-    }
-    out += problems.empty() ? "]" : "\n  ]";
+    Json list = Json::array();
+    for (const auto& p : problems) list.push_back(problemJson(p));
+    j["resource_problems"] = std::move(list);
   }
-  return out + "\n}\n";
+  return jsonFileText(j);
 }
 
 }  // namespace strata::apps

@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "store/store_types.h"
+#include "strata/store/store_types.h"
 
 namespace strata::apps {
 

@@ -4,10 +4,10 @@
 
 #include <cstdio>
 
-#include "core/error.h"
-#include "map/map_file.h"
-#include "mesh/extract_mesh.h"
-#include "mesh/ply.h"
+#include "strata/core/error.h"
+#include "strata/map/map_file.h"
+#include "strata/mesh/extract_mesh.h"
+#include "strata/mesh/ply.h"
 
 namespace strata::apps {
 

@@ -5,14 +5,14 @@
 
 #include "cli/esdf_slice_font.h"
 #include "cli/objects_sheet.h"
-#include "objects/object_observation.h"
+#include "strata/objects/object_observation.h"
 
 namespace strata::apps {
 namespace {
 
-constexpr Rgb kText = {20, 20, 20};
-constexpr int kLabelHeightPx = 22;
-constexpr int kGapPx = 4;
+constexpr Rgb kPairText = {20, 20, 20};
+constexpr int kPairLabelHeightPx = 22;
+constexpr int kPairGapPx = 4;
 
 /// The models to show: two observations or more, most merged observations first (then larger).
 std::vector<const objects::ObjectModel*> mergedModels(const objects::ObjectDatabase& db,
@@ -59,23 +59,23 @@ ColorImage renderBeforeAfter(const ObjectsRun& run, const DiffResult& result,
   const std::vector<const objects::ObjectModel*> models = mergedModels(run.database, count);
   if (models.empty()) {
     ColorImage empty(360, 40, 255);
-    drawText(empty, 8, 12, "NO MODEL WAS MERGED", 2, kText);
+    drawText(empty, 8, 12, "NO MODEL WAS MERGED", 2, kPairText);
     return empty;
   }
   const int columns = static_cast<int>(models.size());
-  const int row_px = size_px + kLabelHeightPx + kGapPx;
-  ColorImage sheet(columns * (size_px + kGapPx) + kGapPx, 2 * row_px + kGapPx, 255);
+  const int row_px = size_px + kPairLabelHeightPx + kPairGapPx;
+  ColorImage sheet(columns * (size_px + kPairGapPx) + kPairGapPx, 2 * row_px + kPairGapPx, 255);
   for (int i = 0; i < columns; ++i) {
     const objects::ObjectModel& m = *models[static_cast<std::size_t>(i)];
-    const int x0 = kGapPx + i * (size_px + kGapPx);
-    drawText(sheet, x0 + 2, kGapPx + 4, "MODEL " + std::to_string(m.id) + ": LARGEST VIEW", 1,
-             kText);
+    const int x0 = kPairGapPx + i * (size_px + kPairGapPx);
+    drawText(sheet, x0 + 2, kPairGapPx + 4, "MODEL " + std::to_string(m.id) + ": LARGEST VIEW", 1,
+             kPairText);
     pasteTile(sheet,
               renderLargestObservation(m, result, maps, run.database.config().observation, size_px),
-              x0, kGapPx + kLabelHeightPx);
-    drawText(sheet, x0 + 2, kGapPx + row_px + 4,
-             "MERGED: " + std::to_string(m.merged_observations) + " OBSERVATIONS", 1, kText);
-    pasteTile(sheet, renderModelView(m, size_px), x0, kGapPx + row_px + kLabelHeightPx);
+              x0, kPairGapPx + kPairLabelHeightPx);
+    drawText(sheet, x0 + 2, kPairGapPx + row_px + 4,
+             "MERGED: " + std::to_string(m.merged_observations) + " OBSERVATIONS", 1, kPairText);
+    pasteTile(sheet, renderModelView(m, size_px), x0, kPairGapPx + row_px + kPairLabelHeightPx);
   }
   return sheet;
 }

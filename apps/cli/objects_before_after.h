@@ -5,10 +5,10 @@
 // viewpoint in the model frame. Shows what merging added: the sides no single session saw.
 #include <vector>
 
-#include "cli/diff_pipeline.h"
+#include "strata/mapper/session_diff.h"
 #include "cli/objects_outputs.h"
-#include "core/types.h"
-#include "map/tsdf_map.h"
+#include "strata/core/types.h"
+#include "strata/map/tsdf_map.h"
 
 namespace strata::apps {
 

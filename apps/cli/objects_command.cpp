@@ -5,12 +5,13 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "cli/diff_pipeline.h"
+#include "strata/mapper/session_diff.h"
 #include "cli/objects_before_after.h"
 #include "cli/objects_outputs.h"
 #include "cli/objects_truth.h"
-#include "core/error.h"
-#include "io/image_io.h"
+#include "strata/core/error.h"
+#include "strata/io/image_io.h"
+#include "strata/io/open_dataset.h"
 
 namespace strata::apps {
 namespace {
@@ -74,7 +75,7 @@ void runChecked(const ObjectsOptions& o) {
   change::ChangeConfig change_config;
   change_config.min_weight = o.min_weight;
   change_config = change_config.forSubsampling(static_cast<int>(stride));
-  const MapConfig map_config = changeMapConfig(o.voxel_size_m);
+  const MapConfig map_config = change::changeMapConfig(o.voxel_size_m);
   vk::ContextOptions context_options;
   context_options.device_selector = o.device;
   const auto context = vk::Context::create(context_options);
@@ -97,7 +98,7 @@ void runChecked(const ObjectsOptions& o) {
   std::string truth_json, truth_summary = "no truth: " + why_not;
   if (truth) {
     const eval::ObjectDbEvaluation e = evaluateObjectsRun(*truth, result, run);
-    truth_json = eval::objectDbEvaluationJson(e, 2);
+    truth_json = eval::objectDbEvaluationJson(e);
     truth_summary = "against the truth of world '" + truth->world->name() +
                     "': " + eval::describeObjectDbEvaluation(e);
   }

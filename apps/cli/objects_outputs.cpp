@@ -5,11 +5,12 @@
 #include <sstream>
 
 #include "cli/objects_sheet.h"
-#include "core/atomic_file.h"
-#include "core/error.h"
-#include "io/image_io.h"
-#include "mesh/ply.h"
-#include "objects/object_database_file.h"
+#include "cli/report_json.h"
+#include "strata/core/atomic_file.h"
+#include "strata/core/error.h"
+#include "strata/io/image_io.h"
+#include "strata/mesh/ply.h"
+#include "strata/objects/object_database_file.h"
 
 namespace strata::apps {
 namespace {
@@ -75,11 +76,11 @@ ObjectsFiles writeObjectsFiles(const ObjectsRun& run, const DiffResult& result,
   files.contact_sheet = (out / "objects.png").string();
   writeColorPng(files.contact_sheet, renderModelSheet(run.database.models()));
   files.json = (out / "objects.json").string();
-  std::ostringstream json;
-  json << "{\n  \"command\": \"objects\",\n" << objectsJsonMembers(run, files, 2);
-  if (!truth_json.empty()) json << ",\n  \"truth\": " << truth_json;
-  json << "\n}\n";
-  writeTextAtomically(files.json, json.str());
+  Json json;
+  json["command"] = "objects";
+  json.update(parseJson(objectsJson(run, files)));
+  if (!truth_json.empty()) json["truth"] = parseJson(truth_json);
+  writeTextAtomically(files.json, jsonFileText(json));
   return files;
 }
 

@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "cli/diff_pipeline.h"
-#include "map/tsdf_map.h"
-#include "objects/object_database.h"
+#include "strata/mapper/session_diff.h"
+#include "strata/map/tsdf_map.h"
+#include "strata/objects/object_database.h"
 
 namespace strata::apps {
 
@@ -41,8 +41,9 @@ struct ObjectsFiles {
 ObjectsFiles writeObjectsFiles(const ObjectsRun& run, const DiffResult& result,
                                const std::string& out_dir, const std::string& truth_json);
 
-/// The JSON members "models" and "segments" (no braces), each line indented by `indent`.
-std::string objectsJsonMembers(const ObjectsRun& run, const ObjectsFiles& files, int indent);
+/// objects.json but its "command" and "truth", as a JSON object: build time, the files
+/// (database, contact sheet, completed sessions), "models" and "segments".
+std::string objectsJson(const ObjectsRun& run, const ObjectsFiles& files);
 
 /// "5 models from 14 segments (9 matched, 1 skipped) in 3.2 s".
 std::string summarizeObjects(const ObjectsRun& run);

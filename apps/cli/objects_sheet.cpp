@@ -6,7 +6,7 @@
 
 #include "cli/esdf_slice_font.h"
 #include "cli/shaded_view.h"
-#include "raycast/raycast.h"
+#include "strata/raycast/raycast.h"
 
 namespace strata::apps {
 namespace {

@@ -4,9 +4,9 @@
 #include <Eigen/Geometry>
 #include <vector>
 
-#include "core/types.h"
-#include "map/tsdf_map.h"
-#include "objects/object_model.h"
+#include "strata/core/types.h"
+#include "strata/map/tsdf_map.h"
+#include "strata/objects/object_model.h"
 
 namespace strata::apps {
 

@@ -3,10 +3,10 @@
 #include <filesystem>
 #include <regex>
 
-#include "cli/sim_setup.h"
-#include "core/atomic_file.h"
-#include "core/error.h"
-#include "sim/world/world_paths.h"
+#include "strata/sim/sim_setup.h"
+#include "strata/core/atomic_file.h"
+#include "strata/core/error.h"
+#include "strata/sim/world/world_paths.h"
 
 namespace strata::apps {
 namespace {
@@ -88,7 +88,7 @@ std::shared_ptr<const SimTruth> findSimTruth(const std::vector<std::string>& ses
     return nullptr;
   }
   auto truth = std::make_shared<SimTruth>();
-  truth->world = loadWorld(path, records.front().seed, sessions);
+  truth->world = sim::loadWorld(path, records.front().seed, sessions);
   truth->world_sessions = indices;
   for (std::size_t i = 0; i < records.size(); ++i) {
     checkAgrees(*truth->world, indices[i], records[i], session_dirs[i]);

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "cli/objects_outputs.h"
-#include "eval/object_db_eval.h"
-#include "sim/world/world.h"
+#include "strata/objects/eval/object_db_eval.h"
+#include "strata/sim/world/world.h"
 
 namespace strata::apps {
 

@@ -8,12 +8,13 @@
 #include <filesystem>
 
 #include "cli/odometry_summary.h"
-#include "cli/progress.h"
+#include "strata/core/progress.h"
 #include "cli/trajectory_plot.h"
-#include "core/atomic_file.h"
-#include "core/error.h"
-#include "io/tum_format.h"
-#include "odometry/pipeline/vio_replay.h"
+#include "strata/core/atomic_file.h"
+#include "strata/core/error.h"
+#include "strata/io/tum_format.h"
+#include "strata/odometry/pipeline/vio_replay.h"
+#include "strata/io/tum_writer.h"
 
 namespace strata::apps {
 namespace {
@@ -42,13 +43,11 @@ odometry::VioPipelineConfig pipelineConfig(const OdometryOptions& o,
 }
 
 void writeTrajectory(const std::string& path, const std::vector<odometry::PipelineFrame>& tracked) {
-  std::string text = "# timestamp tx ty tz qx qy qz qw (left camera to world, strata odometry)\n";
-  char stamp[32];
-  for (const auto& f : tracked) {
-    std::snprintf(stamp, sizeof(stamp), "%.9f ", 1e-9 * static_cast<double>(f.timestamp_ns));
-    text += stamp + tum::poseToTum(f.T_W_C) + "\n";
-  }
-  writeFileAtomically(path, std::vector<std::uint8_t>(text.begin(), text.end()));
+  std::vector<tum::TimedPose> poses;
+  for (const auto& f : tracked)
+    poses.push_back({1e-9 * static_cast<double>(f.timestamp_ns), f.T_W_C});
+  writeTumTrajectory(path, poses,
+                     {"timestamp tx ty tz qx qy qz qw (left camera to world, strata odometry)"}, 9);
 }
 
 std::string frameCsvRow(const odometry::PipelineFrame& f) {
@@ -128,7 +127,7 @@ void printAccuracy(const OdometryAccuracy& a, bool stereo) {
     std::printf(
         "ATE (%s): RMSE %.4f m = %.2f %% of %.2f m of path, max %.4f m; RPE %.2f %%, "
         "%.3f deg/m\n",
-        traj::alignmentName(e.alignment), e.ate_rmse_m,
+        trajectory::alignmentName(e.alignment), e.ate_rmse_m,
         e.path_length_m > 0 ? 100.0 * e.ate_rmse_m / e.path_length_m : 0.0, e.path_length_m,
         e.ate_max_m, e.rpe_trans_percent, e.rpe_rot_deg_per_m);
     if (!stereo) std::printf("Sim(3) scale %.4f (1 = the IMU gave the true scale)\n", e.scale);

@@ -6,18 +6,18 @@
 #include <string>
 #include <vector>
 
-#include "io/euroc_dataset.h"
-#include "odometry/pipeline/vio_pipeline.h"
-#include "trajectory/trajectory_error.h"
+#include "strata/io/euroc_dataset.h"
+#include "strata/odometry/pipeline/vio_pipeline.h"
+#include "strata/trajectory/trajectory_error.h"
 
 namespace strata::apps {
 
 struct OdometryAccuracy {
   // Each nullopt where the alignment cannot be made (e.g. SE(3) of a standstill: all positions
   // in one point leave the rotation free).
-  std::optional<traj::TrajectoryError> se3;    // the headline for stereo (metric) odometry
-  std::optional<traj::TrajectoryError> sim3;   // for mono: the scale the IMU gave, checked
-  std::optional<traj::TrajectoryError> first;  // aligned at the first pose: drift (ate_max_m)
+  std::optional<trajectory::TrajectoryError> se3;    // the headline for stereo (metric) odometry
+  std::optional<trajectory::TrajectoryError> sim3;   // for mono: the scale the IMU gave, checked
+  std::optional<trajectory::TrajectoryError> first;  // aligned at the first pose: drift (ate_max_m)
   /// Angle between the estimated and the true gravity direction in the body frame, degrees: at
   /// the first tracked frame, and the largest over the run.
   double gravity_error_first_deg = 0.0;
@@ -38,7 +38,7 @@ struct OdometryRun {
 };
 
 /// The truth of cam0 (T_W_B * T_B_C0 at every ground-truth state) as a TUM trajectory.
-std::vector<traj::StampedPose> cameraTruth(const euroc::EurocDataset& dataset);
+std::vector<trajectory::StampedPose> cameraTruth(const euroc::EurocDataset& dataset);
 
 /// Errors of the tracked frames against the dataset's ground truth; nullopt without truth or
 /// without a tracked frame that matches it.

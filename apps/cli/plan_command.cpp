@@ -6,9 +6,9 @@
 
 #include "cli/plan_load.h"
 #include "cli/plan_outputs.h"
-#include "core/error.h"
-#include "plan/collision_checker.h"
-#include "plan/planner_factory.h"
+#include "strata/core/error.h"
+#include "strata/plan/collision_checker.h"
+#include "strata/plan/planner_factory.h"
 
 namespace strata::apps {
 namespace {

@@ -4,7 +4,8 @@
 #include <cmath>
 #include <sstream>
 
-#include "core/error.h"
+#include "strata/core/clock.h"
+#include "strata/core/error.h"
 
 namespace strata::apps {
 
@@ -25,7 +26,7 @@ LoadedEsdf loadEsdf(const std::string& map_path, float esdf_max_distance_m,
   out.mapper->updateEsdf();
   out.esdf = &out.mapper->esdf();
   out.esdf_ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+      msSince(start);
   return out;
 }
 

@@ -5,9 +5,9 @@
 #include <memory>
 #include <string>
 
-#include "esdf/esdf_query.h"
-#include "mapper/mapper.h"
-#include "vk/vk.h"
+#include "strata/esdf/esdf_query.h"
+#include "strata/mapper/mapper.h"
+#include "strata/vk/vk.h"
 
 namespace strata::apps {
 

@@ -5,16 +5,12 @@
 #include <sstream>
 
 #include "cli/esdf_slice.h"
-#include "core/atomic_file.h"
-#include "core/json_text.h"
-#include "io/image_io.h"
+#include "cli/report_json.h"
+#include "strata/core/atomic_file.h"
+#include "strata/io/image_io.h"
 
 namespace strata::apps {
 namespace {
-
-std::string point(const Eigen::Vector3f& p) {
-  return "[" + jsonNumber(p.x()) + ", " + jsonNumber(p.y()) + ", " + jsonNumber(p.z()) + "]";
-}
 
 float meanHeight(const PlanReport& r) {
   if (r.result.path_W.empty()) return 0.5f * (r.request.start_W.z() + r.request.goal_W.z());
@@ -43,22 +39,22 @@ void writePathCsv(const std::string& path, const std::vector<Eigen::Vector3f>& p
 }
 
 void writePlanReport(const std::string& path, const PlanReport& r) {
-  std::ostringstream out;
-  out << "{\n  \"planner\": " << jsonQuoted(r.planner)
-      << ",\n  \"success\": " << (r.result.success ? "true" : "false")
-      << ",\n  \"message\": " << jsonQuoted(r.result.message)
-      << ",\n  \"length_m\": " << jsonNumber(r.result.length_m)
-      << ",\n  \"min_clearance_m\": " << jsonNumber(r.result.min_clearance_m)
-      << ",\n  \"planning_ms\": " << jsonNumber(r.result.planning_ms)
-      << ",\n  \"build_ms\": " << jsonNumber(r.build_ms)
-      << ",\n  \"collision_checks\": " << r.result.collision_checks
-      << ",\n  \"memory_bytes\": " << r.memory_bytes
-      << ",\n  \"start\": " << point(r.request.start_W)
-      << ",\n  \"goal\": " << point(r.request.goal_W)
-      << ",\n  \"radius_m\": " << jsonNumber(r.request.radius_m) << ",\n  \"unknown\": "
-      << (r.request.unknown == UnknownPolicy::kOccupied ? "\"occupied\"" : "\"free\"")
-      << ",\n  \"waypoints\": " << r.result.path_W.size() << "\n}\n";
-  writeTextAtomically(path, out.str());
+  Json j;
+  j["planner"] = r.planner;
+  j["success"] = r.result.success;
+  j["message"] = r.result.message;
+  j["length_m"] = r.result.length_m;
+  j["min_clearance_m"] = r.result.min_clearance_m;
+  j["planning_ms"] = r.result.planning_ms;
+  j["build_ms"] = r.build_ms;
+  j["collision_checks"] = r.result.collision_checks;
+  j["memory_bytes"] = r.memory_bytes;
+  j["start"] = jsonVector(r.request.start_W);
+  j["goal"] = jsonVector(r.request.goal_W);
+  j["radius_m"] = jsonFloat(r.request.radius_m);
+  j["unknown"] = r.request.unknown == UnknownPolicy::kOccupied ? "occupied" : "free";
+  j["waypoints"] = r.result.path_W.size();
+  writeTextAtomically(path, jsonFileText(j));
 }
 
 void writePathPng(const std::string& path, const EsdfMap& esdf, const PlanReport& r) {

@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "map/esdf_layer.h"
-#include "plan/plan_types.h"
+#include "strata/map/esdf_layer.h"
+#include "strata/plan/plan_types.h"
 
 namespace strata::apps {
 

@@ -6,14 +6,14 @@
 #include <filesystem>
 #include <sstream>
 
-#include "cli/progress.h"
+#include "strata/core/progress.h"
 #include "cli/select_outputs.h"
 #include "cli/select_plot.h"
-#include "core/error.h"
-#include "io/dataset.h"
-#include "mapper/mapper.h"
-#include "map/map_file.h"
-#include "select/keyframe_scorer.h"
+#include "strata/core/error.h"
+#include "strata/io/open_dataset.h"
+#include "strata/mapper/mapper.h"
+#include "strata/map/map_file.h"
+#include "strata/select/keyframe_scorer.h"
 
 namespace strata::apps {
 namespace {

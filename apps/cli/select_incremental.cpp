@@ -6,11 +6,11 @@
 #include <filesystem>
 #include <string>
 
-#include "cli/diff_pipeline.h"
-#include "cli/progress.h"
+#include "strata/mapper/session_diff.h"
+#include "strata/core/progress.h"
 #include "cli/select_outputs.h"
 #include "cli/select_plot.h"
-#include "io/image_io.h"
+#include "strata/io/image_io.h"
 
 namespace strata::apps {
 namespace {

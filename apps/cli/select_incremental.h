@@ -9,11 +9,11 @@
 #include <vector>
 
 #include "cli/diff_report.h"
-#include "change/carry_forward.h"
-#include "eval/evaluation_session.h"
-#include "eval/evaluation_world.h"
-#include "eval/selection_loop_truth.h"
-#include "eval/selection_report.h"
+#include "strata/change/carry_forward.h"
+#include "strata/change/eval/evaluation_session.h"
+#include "strata/change/eval/evaluation_world.h"
+#include "strata/select/eval/selection_loop_truth.h"
+#include "strata/select/eval/selection_report.h"
 
 namespace strata::apps {
 

@@ -1,107 +1,150 @@
 // The incremental loop's results as a JSON object for the demo's report.json.
-#include <sstream>
-
+#include "cli/report_json.h"
 #include "cli/select_incremental.h"
-#include "core/json_text.h"
 
 namespace strata::apps {
 namespace {
 
-void writeConfusion(std::ostringstream& out, const selection::MethodResult& m) {
+Json methodJson(const selection::MethodResult& m) {
   const selection::Confusion& c = m.confusion;
-  out << "{\"method\": " << jsonQuoted(selection::methodName(m.method))
-      << ", \"recall\": " << c.recall() << ", \"precision\": " << c.precision()
-      << ", \"accuracy\": " << c.accuracy() << ", \"selected\": " << m.selected
-      << ", \"true_positive\": " << c.true_positive << ", \"false_positive\": " << c.false_positive
-      << ", \"true_negative\": " << c.true_negative << ", \"false_negative\": " << c.false_negative
-      << "}";
+  Json j;
+  j["method"] = selection::methodName(m.method);
+  j["recall"] = c.recall();
+  j["precision"] = c.precision();
+  j["accuracy"] = c.accuracy();
+  j["selected"] = m.selected;
+  j["true_positive"] = c.true_positive;
+  j["false_positive"] = c.false_positive;
+  j["true_negative"] = c.true_negative;
+  j["false_negative"] = c.false_negative;
+  return j;
 }
 
-void writeObjects(std::ostringstream& out, const change::ObjectCounts& o) {
-  out << "{\"moved\": " << o.moved << ", \"found\": " << o.found << ", \"recall\": " << o.recall()
-      << ", \"precision\": " << o.precision() << ", \"over_segmented\": " << o.over_segmented
-      << ", \"under_segmented\": " << o.under_segmented << "}";
+Json thresholdsJson(const selection::Thresholds& t) {
+  Json j;
+  j["coverage"] = t.coverage;
+  j["color_change"] = t.color_change;
+  j["depth_change_m"] = t.depth_change_m;
+  j["surface_change"] = t.surface_change;
+  j["ncc"] = t.ncc;
+  j["histogram"] = t.histogram;
+  return j;
 }
 
-void writeArrivals(std::ostringstream& out, const change::ArrivalCounts& a) {
-  out << "{\"arrivals\": " << a.arrivals << ", \"found\": " << a.found
-      << ", \"recall\": " << a.recall() << "}";
+Json agreementJson(const selection::DeviceReferenceAgreement& a) {
+  Json j;
+  j["samples"] = a.samples;
+  j["hit_mismatches"] = a.hit_mismatches;
+  j["surface_mismatches"] = a.surface_mismatches;
+  j["keyframes"] = a.keyframes;
+  j["decision_mismatches"] = a.decision_mismatches;
+  return j;
 }
 
-void writeMatch(std::ostringstream& out, const change::ObjectMatch& m) {
-  out << "{\"found\": " << (m.found ? "true" : "false") << ", \"coverage\": " << m.coverage
-      << ", \"on_object\": " << m.on_object << "}";
-}
-
-void writeInstances(std::ostringstream& out, const std::vector<InstanceOutcome>& instances) {
-  out << "[";
-  for (std::size_t i = 0; i < instances.size(); ++i) {
-    const InstanceOutcome& o = instances[i];
-    out << (i > 0 ? ", " : "") << "{\"session\": " << o.session << ", \"object\": " << o.object_id
-        << ", \"name\": " << jsonQuoted(o.name)
-        << ", \"arrival\": " << (o.arrival ? "true" : "false") << ", \"complete\": ";
-    writeMatch(out, o.complete);
-    out << ", \"incremental\": ";
-    writeMatch(out, o.incremental);
-    out << "}";
+Json imageUseJson(const IncrementalResult& r) {
+  Json per_session = Json::array();
+  for (const selection::ImageUse& use : r.images_per_session) {
+    Json j;
+    j["fused"] = use.fused;
+    j["total"] = use.total;
+    per_session.push_back(std::move(j));
   }
-  out << "]";
+  Json j;
+  j["fused"] = r.images.fused;
+  j["total"] = r.images.total;
+  j["share"] = r.images.share();
+  j["per_session"] = std::move(per_session);
+  return j;
+}
+
+Json freeSpaceJson(const IncrementalResult& r) {
+  Json j;
+  j["skipped_keyframes"] = r.free_space.views;
+  j["vacated_samples"] = r.free_space.samples;
+  j["shared_samples"] = r.free_space_shared_samples;
+  j["pixels_of_skipped_keyframes"] = r.free_space_pixels;
+  j["depth_pixels_kept"] = r.free_space.depth_pixels;
+  j["arrived_samples"] = r.free_space.arrived_samples;
+  j["voxel_observations"] = r.free_space.voxels;
+  j["free_voxel_observations"] = r.free_space.free_voxels;
+  j["integration_s"] = r.free_space_s;
+  return j;
+}
+
+Json objectCountsJson(const change::ObjectCounts& o) {
+  Json j;
+  j["moved"] = o.moved;
+  j["found"] = o.found;
+  j["recall"] = o.recall();
+  j["precision"] = o.precision();
+  j["over_segmented"] = o.over_segmented;
+  j["under_segmented"] = o.under_segmented;
+  return j;
+}
+
+Json arrivalsJson(const change::ArrivalCounts& a) {
+  Json j;
+  j["arrivals"] = a.arrivals;
+  j["found"] = a.found;
+  j["recall"] = a.recall();
+  return j;
+}
+
+Json matchJson(const change::ObjectMatch& m) {
+  Json j;
+  j["found"] = m.found;
+  j["coverage"] = m.coverage;
+  j["on_object"] = m.on_object;
+  return j;
+}
+
+Json instancesJson(const std::vector<InstanceOutcome>& instances) {
+  Json list = Json::array();
+  for (const InstanceOutcome& o : instances) {
+    Json j;
+    j["session"] = o.session;
+    j["object"] = o.object_id;
+    j["name"] = o.name;
+    j["arrival"] = o.arrival;
+    j["complete"] = matchJson(o.complete);
+    j["incremental"] = matchJson(o.incremental);
+    list.push_back(std::move(j));
+  }
+  return list;
 }
 
 }  // namespace
 
 std::string incrementalJson(const IncrementalResult& r) {
-  std::ostringstream out;
-  out.precision(6);
-  const selection::Thresholds& t = r.thresholds;
-  out << "{\"thresholds\": {\"coverage\": " << t.coverage
-      << ", \"color_change\": " << t.color_change << ", \"depth_change_m\": " << t.depth_change_m
-      << ", \"surface_change\": " << t.surface_change << ", \"ncc\": " << t.ncc
-      << ", \"histogram\": " << t.histogram << "}, \"methods\": [";
-  for (std::size_t i = 0; i < r.methods.size(); ++i) {
-    if (i > 0) out << ", ";
-    writeConfusion(out, r.methods[i]);
-  }
-  out << "], \"device_vs_reference\": {\"samples\": " << r.agreement.samples
-      << ", \"hit_mismatches\": " << r.agreement.hit_mismatches
-      << ", \"surface_mismatches\": " << r.agreement.surface_mismatches
-      << ", \"keyframes\": " << r.agreement.keyframes
-      << ", \"decision_mismatches\": " << r.agreement.decision_mismatches
-      << "}, \"keyframes_after_first_session\": {\"fused\": " << r.images.fused
-      << ", \"total\": " << r.images.total << ", \"share\": " << r.images.share()
-      << ", \"per_session\": [";
-  for (std::size_t i = 0; i < r.images_per_session.size(); ++i) {
-    const selection::ImageUse& use = r.images_per_session[i];
-    out << (i > 0 ? ", " : "") << "{\"fused\": " << use.fused << ", \"total\": " << use.total
-        << "}";
-  }
-  out << "]}, \"carried_forward\": {\"confirmed_points\": " << r.carried.points
-      << ", \"voxels\": " << r.carried.voxels
-      << "}, \"free_space\": {\"skipped_keyframes\": " << r.free_space.views
-      << ", \"vacated_samples\": " << r.free_space.samples
-      << ", \"shared_samples\": " << r.free_space_shared_samples
-      << ", \"pixels_of_skipped_keyframes\": " << r.free_space_pixels
-      << ", \"depth_pixels_kept\": " << r.free_space.depth_pixels
-      << ", \"arrived_samples\": " << r.free_space.arrived_samples
-      << ", \"voxel_observations\": " << r.free_space.voxels
-      << ", \"free_voxel_observations\": " << r.free_space.free_voxels
-      << ", \"integration_s\": " << r.free_space_s << "}, \"fused_vs_truth\": ";
+  Json methods = Json::array();
+  for (const selection::MethodResult& m : r.methods) methods.push_back(methodJson(m));
+  Json carried;
+  carried["confirmed_points"] = r.carried.points;
+  carried["voxels"] = r.carried.voxels;
   const selection::Confusion& f = r.fused_confusion;
-  out << "{\"recall\": " << f.recall() << ", \"precision\": " << f.precision()
-      << ", \"accuracy\": " << f.accuracy()
-      << "}, \"surface_coverage\": {\"complete\": " << r.coverage_complete
-      << ", \"incremental\": " << r.coverage_incremental << "}, \"objects_complete\": ";
-  writeObjects(out, r.objects_complete);
-  out << ", \"objects_incremental\": ";
-  writeObjects(out, r.objects_incremental);
-  out << ", \"arrivals_complete\": ";
-  writeArrivals(out, r.arrivals_complete);
-  out << ", \"arrivals_incremental\": ";
-  writeArrivals(out, r.arrivals_incremental);
-  out << ", \"instances\": ";
-  writeInstances(out, r.instances);
-  out << ", \"wall_s\": " << r.wall_s << "}";
-  return out.str();
+  Json fused;
+  fused["recall"] = f.recall();
+  fused["precision"] = f.precision();
+  fused["accuracy"] = f.accuracy();
+  Json coverage;
+  coverage["complete"] = r.coverage_complete;
+  coverage["incremental"] = r.coverage_incremental;
+  Json j;
+  j["thresholds"] = thresholdsJson(r.thresholds);
+  j["methods"] = std::move(methods);
+  j["device_vs_reference"] = agreementJson(r.agreement);
+  j["keyframes_after_first_session"] = imageUseJson(r);
+  j["carried_forward"] = std::move(carried);
+  j["free_space"] = freeSpaceJson(r);
+  j["fused_vs_truth"] = std::move(fused);
+  j["surface_coverage"] = std::move(coverage);
+  j["objects_complete"] = objectCountsJson(r.objects_complete);
+  j["objects_incremental"] = objectCountsJson(r.objects_incremental);
+  j["arrivals_complete"] = arrivalsJson(r.arrivals_complete);
+  j["arrivals_incremental"] = arrivalsJson(r.arrivals_incremental);
+  j["instances"] = instancesJson(r.instances);
+  j["wall_s"] = r.wall_s;
+  return jsonText(j);
 }
 
 }  // namespace strata::apps

@@ -6,8 +6,8 @@
 #include <stdexcept>
 
 #include "cli/select_plot.h"
-#include "core/atomic_file.h"
-#include "io/image_io.h"
+#include "strata/core/atomic_file.h"
+#include "strata/io/image_io.h"
 
 namespace strata::apps {
 

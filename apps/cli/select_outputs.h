@@ -4,9 +4,9 @@
 #include <string>
 #include <vector>
 
-#include "core/types.h"
-#include "select/keyframe_selection.h"
-#include "eval/selection_truth.h"
+#include "strata/core/types.h"
+#include "strata/select/keyframe_selection.h"
+#include "strata/select/eval/selection_truth.h"
 
 namespace strata::apps {
 

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "core/types.h"
-#include "select/keyframe_selection.h"
+#include "strata/core/types.h"
+#include "strata/select/keyframe_selection.h"
 
 namespace strata::apps {
 

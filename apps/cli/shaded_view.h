@@ -1,7 +1,7 @@
 #pragma once
 // Pictures of the map for people: shaded renderings of raycast images.
-#include "core/types.h"
-#include "raycast/raycast.h"
+#include "strata/core/types.h"
+#include "strata/raycast/raycast.h"
 
 namespace strata::apps {
 

@@ -4,15 +4,15 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "cli/progress.h"
-#include "cli/sim_setup.h"
-#include "core/error.h"
-#include "io/odometry_frame_file.h"
-#include "io/tum_format.h"
-#include "io/tum_writer.h"
-#include "sim/sensors/odometry_frame.h"
-#include "sim/session/stereo_recording.h"
-#include "sim/world/ground_truth.h"
+#include "strata/core/progress.h"
+#include "strata/sim/sim_setup.h"
+#include "strata/core/error.h"
+#include "strata/io/odometry_frame_file.h"
+#include "strata/io/tum_format.h"
+#include "strata/io/tum_writer.h"
+#include "strata/sim/sensors/odometry_frame.h"
+#include "strata/sim/session/stereo_recording.h"
+#include "strata/sim/world/ground_truth.h"
 
 namespace strata::apps {
 namespace {
@@ -55,7 +55,7 @@ std::size_t writeSession(const sim::SimSessionDataset& session, const fs::path& 
 
 sim::StereoRecordingConfig stereoConfig(const SimOptions& o) {
   sim::StereoRecordingConfig config =
-      stereoRecordingConfig(o.stereo_width_px, o.stereo_height_px, !o.no_noise);
+      sim::stereoRecordingConfig(o.stereo_width_px, o.stereo_height_px, !o.no_noise);
   config.stereo = !o.mono;
   config.duration_s = o.stereo_duration_s;
   if (!o.no_noise) {
@@ -107,9 +107,9 @@ CLI::App* addSimCommand(CLI::App& app, SimOptions& o) {
 
 int runSim(const SimOptions& o) {
   try {
-    const auto world = loadWorld(o.world, o.seed, o.sessions);
+    const auto world = sim::loadWorld(o.world, o.seed, o.sessions);
     sim::SimSessionConfig config =
-        sessionConfig(o.rate_hz, o.max_frames, !o.no_noise, o.drift || o.own_frames);
+        sim::sessionConfig(o.rate_hz, o.max_frames, !o.no_noise, o.drift || o.own_frames);
     config.trajectory.rest_at_start_s = o.rest_s;
     if (o.color_texture) config.camera.color_texture = sim::WorldTextureConfig{};
     std::vector<std::unique_ptr<sim::SimSessionDataset>> sessions;

@@ -6,8 +6,8 @@
 
 #include "cli/plan_load.h"
 #include "cli/topo_outputs.h"
-#include "core/error.h"
-#include "plan/topo_map.h"
+#include "strata/core/error.h"
+#include "strata/plan/topo_map.h"
 
 namespace strata::apps {
 namespace {

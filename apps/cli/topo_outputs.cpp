@@ -4,13 +4,12 @@
 #include <cmath>
 #include <cstdio>
 #include <opencv2/imgproc.hpp>
-#include <sstream>
 
 #include "cli/esdf_slice_font.h"
-#include "core/atomic_file.h"
-#include "core/json_text.h"
-#include "io/image_io.h"
-#include "plan/grid_astar.h"
+#include "cli/report_json.h"
+#include "strata/core/atomic_file.h"
+#include "strata/io/image_io.h"
+#include "strata/plan/grid_astar.h"
 
 namespace strata::apps {
 namespace {
@@ -21,10 +20,6 @@ using plan::VoxelBox;
 
 constexpr int kMinMapPx = 640;
 constexpr int kTitlePx = 28;
-
-std::string pointJson(const Eigen::Vector3f& p) {
-  return "[" + jsonNumber(p.x()) + ", " + jsonNumber(p.y()) + ", " + jsonNumber(p.z()) + "]";
-}
 
 Eigen::Vector3f corner(const Eigen::Vector3i& v, float voxel_m) {
   return v.cast<float>() * voxel_m;
@@ -54,43 +49,39 @@ int busiestLayer(const TopoMap& topo) {
          static_cast<int>(std::max_element(count.begin(), count.end()) - count.begin());
 }
 
-}  // namespace
-
-std::size_t gridMemoryBytes(const TopoMap& topo) {
-  return topo.stats().grid_cells * plan::kGridAStarBytesPerCell;
-}
-
-void writeTopoJson(const std::string& path, const TopoMap& topo) {
+Json clustersJson(const TopoMap& topo) {
   const float voxel_m = topo.voxelSize();
-  const plan::TopoStats& s = topo.stats();
-  std::ostringstream out;
-  out << "{\n  \"radius_m\": " << jsonNumber(topo.options().radius_m) << ",\n  \"unknown\": "
-      << (topo.options().unknown == UnknownPolicy::kOccupied ? "\"occupied\"" : "\"free\"")
-      << ",\n  \"voxel_size_m\": " << jsonNumber(voxel_m)
-      << ",\n  \"build_ms\": " << jsonNumber(s.build_ms)
-      << ",\n  \"traversable_voxels\": " << s.traversable_voxels
-      << ",\n  \"grid_cells\": " << s.grid_cells
-      << ",\n  \"cluster_count\": " << topo.clusters().size()
-      << ",\n  \"portal_count\": " << topo.portals().size()
-      << ",\n  \"edge_count\": " << topo.edgeCount()
-      << ",\n  \"memory_bytes\": " << topo.memoryBytes()
-      << ",\n  \"grid_memory_bytes\": " << gridMemoryBytes(topo) << ",\n  \"clusters\": [";
+  Json clusters = Json::array();
   for (std::size_t c = 0; c < topo.clusters().size(); ++c) {
     const VoxelBox& b = topo.clusters()[c];
-    out << (c ? ",\n" : "\n") << "    {\"id\": " << c
-        << ", \"min_m\": " << pointJson(corner(b.lo, voxel_m))
-        << ", \"max_m\": " << pointJson(corner(b.hi + Eigen::Vector3i::Ones(), voxel_m))
-        << ", \"voxels\": " << b.volume() << "}";
+    Json j;
+    j["id"] = c;
+    j["min_m"] = jsonVector(corner(b.lo, voxel_m));
+    j["max_m"] = jsonVector(corner(b.hi + Eigen::Vector3i::Ones(), voxel_m));
+    j["voxels"] = b.volume();
+    clusters.push_back(std::move(j));
   }
-  out << "\n  ],\n  \"portals\": [";
+  return clusters;
+}
+
+Json portalsJson(const TopoMap& topo) {
+  Json portals = Json::array();
   for (std::size_t i = 0; i < topo.portals().size(); ++i) {
     const TopoPortal& p = topo.portals()[i];
-    out << (i ? ",\n" : "\n") << "    {\"id\": " << i << ", \"clusters\": [" << p.a << ", " << p.b
-        << "], \"axis\": " << p.axis << ", \"min_m\": " << pointJson(p.lo_W)
-        << ", \"max_m\": " << pointJson(p.hi_W) << "}";
+    Json j;
+    j["id"] = i;
+    j["clusters"] = Json::array({p.a, p.b});
+    j["axis"] = p.axis;
+    j["min_m"] = jsonVector(p.lo_W);
+    j["max_m"] = jsonVector(p.hi_W);
+    portals.push_back(std::move(j));
   }
-  out << "\n  ],\n  \"edges\": [";
-  bool first = true;
+  return portals;
+}
+
+/// Every pair of portals of one cluster: [portal, portal, straight-line length in metres].
+Json edgesJson(const TopoMap& topo) {
+  Json edges = Json::array();
   for (std::size_t c = 0; c < topo.clusters().size(); ++c) {
     const auto cluster = static_cast<std::int32_t>(c);
     for (const std::int32_t* i = topo.portalsBegin(cluster); i != topo.portalsEnd(cluster); ++i) {
@@ -98,15 +89,37 @@ void writeTopoJson(const std::string& path, const TopoMap& topo) {
         const float length_m = (topo.portals()[static_cast<std::size_t>(*i)].centre() -
                                 topo.portals()[static_cast<std::size_t>(*j)].centre())
                                    .norm();
-        out << (first ? "\n" : ",\n") << "    [" << *i << ", " << *j << ", " << jsonNumber(length_m)
-            << "]";
-        first = false;
+        edges.push_back(Json::array({*i, *j, jsonFloat(length_m)}));
       }
     }
   }
-  out << "\n  ]\n}\n";
-  const std::string text = out.str();
-  writeFileAtomically(path, std::vector<std::uint8_t>(text.begin(), text.end()));
+  return edges;
+}
+
+}  // namespace
+
+std::size_t gridMemoryBytes(const TopoMap& topo) {
+  return topo.stats().grid_cells * plan::kGridAStarBytesPerCell;
+}
+
+void writeTopoJson(const std::string& path, const TopoMap& topo) {
+  const plan::TopoStats& s = topo.stats();
+  Json j;
+  j["radius_m"] = jsonFloat(topo.options().radius_m);
+  j["unknown"] = topo.options().unknown == UnknownPolicy::kOccupied ? "occupied" : "free";
+  j["voxel_size_m"] = jsonFloat(topo.voxelSize());
+  j["build_ms"] = s.build_ms;
+  j["traversable_voxels"] = s.traversable_voxels;
+  j["grid_cells"] = s.grid_cells;
+  j["cluster_count"] = topo.clusters().size();
+  j["portal_count"] = topo.portals().size();
+  j["edge_count"] = topo.edgeCount();
+  j["memory_bytes"] = topo.memoryBytes();
+  j["grid_memory_bytes"] = gridMemoryBytes(topo);
+  j["clusters"] = clustersJson(topo);
+  j["portals"] = portalsJson(topo);
+  j["edges"] = edgesJson(topo);
+  writeTextAtomically(path, jsonFileText(j));
 }
 
 float writeTopoPng(const std::string& path, const TopoMap& topo, float z_m) {

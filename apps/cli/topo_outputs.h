@@ -2,7 +2,7 @@
 // The files of `strata topo`: the map as JSON and the picture from above.
 #include <string>
 
-#include "plan/topo_map.h"
+#include "strata/plan/topo_map.h"
 
 namespace strata::apps {
 

@@ -5,8 +5,8 @@
 #include <cstdio>
 #include <opencv2/imgproc.hpp>
 
-#include "core/error.h"
-#include "io/image_io.h"
+#include "strata/core/error.h"
+#include "strata/io/image_io.h"
 
 namespace strata::apps {
 namespace {
@@ -27,7 +27,7 @@ struct View {
   }
 };
 
-View makeView(const traj::TrajectoryError& e) {
+View makeView(const trajectory::TrajectoryError& e) {
   View view;
   view.min_m = view.max_m = e.truth_positions_m.front();
   for (const auto* set : {&e.truth_positions_m, &e.estimate_positions_m}) {
@@ -67,13 +67,13 @@ void drawPath(cv::Mat& image, const View& view, const std::vector<Eigen::Vector3
   }
 }
 
-void drawCaption(cv::Mat& image, const View& view, const traj::TrajectoryError& e) {
+void drawCaption(cv::Mat& image, const View& view, const trajectory::TrajectoryError& e) {
   const char* axes = "xyz";
   char text[256];
   std::snprintf(text, sizeof text,
                 "ATE RMSE %.3f m (%.2f %% of %.2f m), alignment %s, %zu poses; view %c right, %c up",
                 e.ate_rmse_m, e.path_length_m > 0 ? 100.0 * e.ate_rmse_m / e.path_length_m : 0.0,
-                e.path_length_m, traj::alignmentName(e.alignment), e.matched, axes[view.axis_u],
+                e.path_length_m, trajectory::alignmentName(e.alignment), e.matched, axes[view.axis_u],
                 axes[view.axis_v]);
   const int y = view.height_px - kCaption_px / 2;
   cv::putText(image, text, {kMargin_px, y}, cv::FONT_HERSHEY_SIMPLEX, 0.45, {40, 40, 40}, 1, cv::LINE_AA);
@@ -90,7 +90,7 @@ void drawCaption(cv::Mat& image, const View& view, const traj::TrajectoryError& 
 
 }  // namespace
 
-void writeTrajectoryPlot(const std::string& png_path, const traj::TrajectoryError& e) {
+void writeTrajectoryPlot(const std::string& png_path, const trajectory::TrajectoryError& e) {
   if (e.truth_positions_m.empty()) throw InputError("trajectory plot: no matched poses to draw");
   const View view = makeView(e);
   cv::Mat image(view.height_px, kWidth_px, CV_8UC3, cv::Scalar(255, 255, 255));

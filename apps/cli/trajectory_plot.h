@@ -5,12 +5,12 @@
 // a ground robot or a hand-held sweep of a room).
 #include <string>
 
-#include "trajectory/trajectory_error.h"
+#include "strata/trajectory/trajectory_error.h"
 
 namespace strata::apps {
 
 /// Writes the PNG atomically (960 px wide). Throws InputError when the error has no poses,
 /// Error when the file cannot be written.
-void writeTrajectoryPlot(const std::string& png_path, const traj::TrajectoryError& error);
+void writeTrajectoryPlot(const std::string& png_path, const trajectory::TrajectoryError& error);
 
 }  // namespace strata::apps

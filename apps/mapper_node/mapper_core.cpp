@@ -5,14 +5,15 @@
 #include <filesystem>
 #include <map>
 
-#include "core/error.h"
-#include "lcm/block_mesh_msg.h"
-#include "lcm/convert_change.h"
-#include "lcm/convert_objects.h"
-#include "lcm/esdf_slice_msg.h"
-#include "lcm/lcm_time.h"
-#include "objects/object_database.h"
-#include "objects/object_database_file.h"
+#include "strata/core/clock.h"
+#include "strata/core/error.h"
+#include "strata/lcm/block_mesh_msg.h"
+#include "strata/lcm/convert_change.h"
+#include "strata/lcm/convert_objects.h"
+#include "strata/lcm/esdf_slice_msg.h"
+#include "strata/lcm/lcm_time.h"
+#include "strata/objects/object_database.h"
+#include "strata/objects/object_database_file.h"
 
 namespace strata::apps {
 namespace {
@@ -101,7 +102,7 @@ bool MapperCore::fuse(const lcm_io::ReadyFrame& ready, keyframe_score_t* score) 
   ++frames_fused_;
   last_frame_utime_ = ready.utime;
   last_fuse_ms_ =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+      msSince(start);
   total_fuse_ms_ += last_fuse_ms_;
   return scored;
 }

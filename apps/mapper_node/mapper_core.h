@@ -14,15 +14,15 @@
 #include <string>
 #include <vector>
 
-#include "lcm/frame_assembler.h"
-#include "mapper/mapper.h"
+#include "strata/lcm/frame_assembler.h"
+#include "strata/mapper/mapper.h"
 #include "mapper_node/mapper_options.h"
 #include "strata/change_event_t.hpp"
 #include "strata/esdf_slice_t.hpp"
 #include "strata/keyframe_score_t.hpp"
 #include "strata/mesh_update_t.hpp"
 #include "strata/object_update_t.hpp"
-#include "vk/vk.h"
+#include "strata/vk/vk.h"
 
 namespace strata::objects {
 class ObjectDatabase;

@@ -11,10 +11,10 @@
 
 #include "mapper_node/mapper_core.h"
 #include "mapper_node/mapper_node.h"
-#include "core/error.h"
-#include "lcm/stop_signal.h"
-#include "map/map_file.h"
-#include "vk/vk.h"
+#include "strata/core/error.h"
+#include "strata/lcm/stop_signal.h"
+#include "strata/map/map_file.h"
+#include "strata/vk/vk.h"
 
 namespace {
 

@@ -5,9 +5,9 @@
 #include <exception>
 #include <thread>
 
-#include "core/error.h"
-#include "lcm/convert_frame.h"
-#include "lcm/convert_pose.h"
+#include "strata/core/error.h"
+#include "strata/lcm/convert_frame.h"
+#include "strata/lcm/convert_pose.h"
 #include "strata/camera_info_t.hpp"
 #include "strata/pose_t.hpp"
 

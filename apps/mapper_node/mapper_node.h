@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "lcm/frame_assembler.h"
-#include "lcm/frame_queue.h"
-#include "lcm/input_stats.h"
+#include "strata/lcm/frame_assembler.h"
+#include "strata/lcm/frame_queue.h"
+#include "strata/lcm/input_stats.h"
 #include "mapper_node/mapper_core.h"
 #include "mapper_node/mapper_options.h"
 #include "strata/command_t.hpp"

@@ -3,10 +3,10 @@
 #include <cstdio>
 #include <thread>
 
-#include "core/error.h"
-#include "lcm/lcm_time.h"
+#include "strata/core/error.h"
+#include "strata/lcm/lcm_time.h"
 #include "mapper_node/mapper_node.h"
-#include "objects/object_database.h"
+#include "strata/objects/object_database.h"
 
 namespace strata::apps {
 namespace {

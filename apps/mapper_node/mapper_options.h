@@ -4,8 +4,8 @@
 #include <cstddef>
 #include <string>
 
-#include "lcm/channels.h"
-#include "map/map_config.h"
+#include "strata/lcm/channels.h"
+#include "strata/map/map_config.h"
 
 namespace CLI {
 class App;

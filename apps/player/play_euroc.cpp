@@ -3,10 +3,10 @@
 #include <chrono>
 #include <thread>
 
-#include "cli/progress.h"
-#include "core/error.h"
-#include "lcm/convert_stereo.h"
-#include "lcm/lcm_time.h"
+#include "strata/core/progress.h"
+#include "strata/core/error.h"
+#include "strata/lcm/convert_stereo.h"
+#include "strata/lcm/lcm_time.h"
 #include "player/internal/publish.h"
 
 namespace strata::apps {

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "io/euroc_dataset.h"
+#include "strata/io/euroc_dataset.h"
 #include "player/play_options.h"
 
 namespace strata::apps {

@@ -2,8 +2,8 @@
 // Options of strata-play: what to replay, how fast, and how it is sent.
 #include <string>
 
-#include "lcm/channels.h"
-#include "lcm/convert_frame.h"
+#include "strata/lcm/channels.h"
+#include "strata/lcm/convert_frame.h"
 
 namespace CLI {
 class App;

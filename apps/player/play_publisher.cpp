@@ -1,9 +1,9 @@
 #include "player/play_publisher.h"
 
-#include "core/error.h"
-#include "lcm/channels.h"
-#include "lcm/convert_pose.h"
-#include "lcm/lcm_time.h"
+#include "strata/core/error.h"
+#include "strata/lcm/channels.h"
+#include "strata/lcm/convert_pose.h"
+#include "strata/lcm/lcm_time.h"
 #include "strata/imu_t.hpp"
 #include "player/internal/publish.h"
 

@@ -7,9 +7,9 @@
 #include <lcm/lcm-cpp.hpp>
 #include <string>
 
-#include "core/types.h"
-#include "lcm/convert_frame.h"
-#include "sim/sensors/imu.h"
+#include "strata/core/types.h"
+#include "strata/lcm/convert_frame.h"
+#include "strata/sim/sensors/imu.h"
 #include "strata/command_t.hpp"
 
 namespace strata::apps {

@@ -7,10 +7,10 @@
 #include <memory>
 #include <thread>
 
-#include "cli/progress.h"
-#include "core/error.h"
-#include "io/euroc_dataset.h"
-#include "lcm/lcm_time.h"
+#include "strata/core/progress.h"
+#include "strata/core/error.h"
+#include "strata/io/euroc_dataset.h"
+#include "strata/lcm/lcm_time.h"
 #include "player/play_euroc.h"
 #include "player/play_flow.h"
 #include "player/play_publisher.h"

@@ -1,9 +1,9 @@
 #include "player/play_source.h"
 
-#include "cli/sim_setup.h"
-#include "core/error.h"
-#include "sim/session/sim_session.h"
-#include "sim/world/world_paths.h"
+#include "strata/sim/sim_setup.h"
+#include "strata/core/error.h"
+#include "strata/sim/session/sim_session.h"
+#include "strata/sim/world/world_paths.h"
 
 namespace strata::apps {
 namespace {
@@ -26,13 +26,13 @@ PlaySource openSim(const std::string& spec, int sim_frames, bool sim_noise, bool
     world_name = world_name.substr(0, colon);
   }
   if (world_name.empty()) world_name = "room";
-  const auto world = loadWorld(sim::findWorld(world_name), 0, 0);
+  const auto world = sim::loadWorld(sim::findWorld(world_name), 0, 0);
   if (session < 0 || session >= world->sessionCount()) {
     throw InputError("'" + spec + "': world has sessions 0.." +
                      std::to_string(world->sessionCount() - 1));
   }
   auto dataset = std::make_unique<sim::SimSessionDataset>(
-      world, session, sessionConfig(30.0, sim_frames, sim_noise, false));
+      world, session, sim::sessionConfig(30.0, sim_frames, sim_noise, false));
   PlaySource source;
   if (with_imu) source.imu = dataset->imu();
   source.dataset = std::move(dataset);

@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "io/dataset.h"
-#include "sim/sensors/imu.h"
+#include "strata/io/open_dataset.h"
+#include "strata/sim/sensors/imu.h"
 
 namespace strata::apps {
 

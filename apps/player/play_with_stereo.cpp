@@ -2,7 +2,7 @@
 
 #include <filesystem>
 
-#include "core/error.h"
+#include "strata/core/error.h"
 
 namespace strata::apps {
 namespace {

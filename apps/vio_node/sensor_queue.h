@@ -14,7 +14,7 @@
 #include <optional>
 #include <variant>
 
-#include "lcm/convert_stereo.h"
+#include "strata/lcm/convert_stereo.h"
 
 namespace strata::apps {
 

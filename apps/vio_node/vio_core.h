@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "io/euroc_types.h"
-#include "lcm/convert_stereo.h"
-#include "odometry/pipeline/vio_pipeline.h"
+#include "strata/io/euroc_types.h"
+#include "strata/lcm/convert_stereo.h"
+#include "strata/odometry/pipeline/vio_pipeline.h"
 
 namespace strata::apps {
 

@@ -9,10 +9,10 @@
 #include <cstdio>
 #include <memory>
 
-#include "core/atomic_file.h"
-#include "core/error.h"
-#include "io/euroc_dataset.h"
-#include "lcm/stop_signal.h"
+#include "strata/core/atomic_file.h"
+#include "strata/core/error.h"
+#include "strata/io/euroc_dataset.h"
+#include "strata/lcm/stop_signal.h"
 #include "vio_node/vio_node.h"
 
 namespace {

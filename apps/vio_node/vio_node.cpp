@@ -6,8 +6,8 @@
 #include <limits>
 #include <thread>
 
-#include "core/error.h"
-#include "lcm/convert_frame.h"
+#include "strata/core/error.h"
+#include "strata/lcm/convert_frame.h"
 
 namespace strata::apps {
 namespace {

@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "io/euroc_types.h"
-#include "lcm/input_stats.h"
+#include "strata/io/euroc_types.h"
+#include "strata/lcm/input_stats.h"
 #include "vio_node/sensor_queue.h"
 #include "vio_node/vio_core.h"
 #include "vio_node/vio_options.h"

@@ -2,8 +2,8 @@
 #include <cstdio>
 #include <thread>
 
-#include "core/error.h"
-#include "lcm/convert_pose.h"
+#include "strata/core/error.h"
+#include "strata/lcm/convert_pose.h"
 #include "vio_node/vio_node.h"
 
 namespace strata::apps {

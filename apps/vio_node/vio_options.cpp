@@ -3,7 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <cmath>
 
-#include "core/error.h"
+#include "strata/core/error.h"
 
 namespace strata::apps {
 

@@ -4,8 +4,8 @@
 #include <cstddef>
 #include <string>
 
-#include "lcm/channels.h"
-#include "odometry/pipeline/vio_pipeline.h"
+#include "strata/lcm/channels.h"
+#include "strata/odometry/pipeline/vio_pipeline.h"
 
 namespace CLI {
 class App;

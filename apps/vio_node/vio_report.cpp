@@ -2,12 +2,13 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <nlohmann/json.hpp>
 #include <sstream>
-
-#include "core/json_text.h"
 
 namespace strata::apps {
 namespace {
+
+using Json = nlohmann::ordered_json;
 
 std::int64_t framesSkipped(const VioSnapshot& s) {
   const VioCounters& c = s.counters;
@@ -21,6 +22,38 @@ std::int64_t imuSkipped(const VioSnapshot& s) {
   return c.imu_corrupt + c.imu_nonfinite + c.imu_dropped_backlog +
          static_cast<std::int64_t>(s.pipeline.imu_nonfinite_skipped +
                                    s.pipeline.imu_out_of_order_skipped);
+}
+
+/// The failures as {"utime", "reason"}, oldest first.
+Json failureLogJson(const odometry::PipelineStats& p) {
+  Json log = Json::array();
+  for (const auto& [t_ns, reason] : p.failure_log) {
+    Json j;
+    j["utime"] = t_ns / 1000;
+    j["reason"] = reason;
+    log.push_back(std::move(j));
+  }
+  return log;
+}
+
+Json framesSkippedJson(const VioSnapshot& s) {
+  Json j;
+  j["corrupt"] = s.counters.frames_corrupt;
+  j["bad_image"] = s.counters.frames_bad_image;
+  j["out_of_order"] = s.pipeline.frames_out_of_order_skipped;
+  j["without_imu"] = s.pipeline.frames_without_imu_skipped;
+  j["backlog"] = s.counters.frames_dropped_backlog;
+  return j;
+}
+
+Json imuSkippedJson(const VioSnapshot& s) {
+  Json j;
+  j["corrupt"] = s.counters.imu_corrupt;
+  j["nonfinite"] =
+      s.counters.imu_nonfinite + static_cast<std::int64_t>(s.pipeline.imu_nonfinite_skipped);
+  j["out_of_order"] = s.pipeline.imu_out_of_order_skipped;
+  j["backlog"] = s.counters.imu_dropped_backlog;
+  return j;
 }
 
 }  // namespace
@@ -46,36 +79,29 @@ std::string vioSummaryJson(const VioSnapshot& s, const std::string& calibration_
   const odometry::PipelineStats& p = s.pipeline;
   const VioCounters& c = s.counters;
   const double processed = static_cast<double>(std::max<std::size_t>(1, p.frames_processed));
-  std::ostringstream j;
-  j << "{\"calibration\": " << jsonQuoted(calibration_dir)
-    << ", \"stereo\": " << (s.stereo ? "true" : "false")
-    << ", \"stopped_by\": " << jsonQuoted(s.stopped_by)
-    << ", \"elapsed_s\": " << jsonNumber(s.elapsed_s)
-    << ", \"frames_received\": " << c.frames_received
-    << ", \"frames_processed\": " << p.frames_processed
-    << ", \"frames_tracked\": " << p.frames_tracking
-    << ", \"frames_initializing\": " << p.frames_initializing << ", \"failures\": " << p.failures
-    << ", \"poses_published\": " << c.poses_published
-    << ", \"poses_unpublished\": " << c.poses_unpublished << ", \"first_tracked_utime\": "
-    << (p.first_tracking_ns >= 0 ? std::to_string(p.first_tracking_ns / 1000) : "null")
-    << ", \"last_failure\": " << jsonQuoted(s.last_failure) << ", \"failure_log\": [";
-  for (std::size_t i = 0; i < p.failure_log.size(); ++i) {
-    j << (i ? ", " : "") << "{\"utime\": " << p.failure_log[i].first / 1000
-      << ", \"reason\": " << jsonQuoted(p.failure_log[i].second) << "}";
-  }
-  j << "], \"frames_skipped\": {\"corrupt\": " << c.frames_corrupt
-    << ", \"bad_image\": " << c.frames_bad_image
-    << ", \"out_of_order\": " << p.frames_out_of_order_skipped
-    << ", \"without_imu\": " << p.frames_without_imu_skipped
-    << ", \"backlog\": " << c.frames_dropped_backlog << "}"
-    << ", \"imu_received\": " << c.imu_received << ", \"imu_accepted\": " << p.imu_samples
-    << ", \"imu_skipped\": {\"corrupt\": " << c.imu_corrupt
-    << ", \"nonfinite\": " << c.imu_nonfinite + static_cast<std::int64_t>(p.imu_nonfinite_skipped)
-    << ", \"out_of_order\": " << p.imu_out_of_order_skipped
-    << ", \"backlog\": " << c.imu_dropped_backlog << "}"
-    << ", \"frontend_ms_per_frame\": " << jsonNumber(p.frontend_ms_total / processed)
-    << ", \"backend_ms_per_frame\": " << jsonNumber(p.backend_ms_total / processed) << "}\n";
-  return j.str();
+  Json j;
+  j["calibration"] = calibration_dir;
+  j["stereo"] = s.stereo;
+  j["stopped_by"] = s.stopped_by;
+  j["elapsed_s"] = s.elapsed_s;
+  j["frames_received"] = c.frames_received;
+  j["frames_processed"] = p.frames_processed;
+  j["frames_tracked"] = p.frames_tracking;
+  j["frames_initializing"] = p.frames_initializing;
+  j["failures"] = p.failures;
+  j["poses_published"] = c.poses_published;
+  j["poses_unpublished"] = c.poses_unpublished;
+  j["first_tracked_utime"] =
+      p.first_tracking_ns >= 0 ? Json(p.first_tracking_ns / 1000) : Json(nullptr);
+  j["last_failure"] = s.last_failure;
+  j["failure_log"] = failureLogJson(p);
+  j["frames_skipped"] = framesSkippedJson(s);
+  j["imu_received"] = c.imu_received;
+  j["imu_accepted"] = p.imu_samples;
+  j["imu_skipped"] = imuSkippedJson(s);
+  j["frontend_ms_per_frame"] = p.frontend_ms_total / processed;
+  j["backend_ms_per_frame"] = p.backend_ms_total / processed;
+  return j.dump(2, ' ', false, Json::error_handler_t::replace) + "\n";
 }
 
 }  // namespace strata::apps

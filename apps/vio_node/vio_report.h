@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <string>
 
-#include "odometry/pipeline/vio_pipeline.h"
+#include "strata/odometry/pipeline/vio_pipeline.h"
 
 namespace strata::apps {
 

@@ -5,7 +5,7 @@
 #include <cstddef>
 #include <string>
 
-#include "core/error.h"
+#include "strata/core/error.h"
 
 namespace strata::apps::internal {
 
