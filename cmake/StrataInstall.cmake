@@ -67,9 +67,13 @@ foreach(component ${strata_all_components})
   foreach(folder ${folders})
     # eval/ folders (scoring against the simulator's truth) belong to the eval component.
     get_filename_component(parent ${folder} DIRECTORY)
+    set(skip_eval PATTERN "eval" EXCLUDE)
+    if(folder MATCHES "/eval$")
+      set(skip_eval "")
+    endif()
     install(DIRECTORY ${PROJECT_SOURCE_DIR}/src/strata/${folder}
             DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/strata/${parent}
-            FILES_MATCHING PATTERN "*.h" PATTERN "internal" EXCLUDE PATTERN "eval" EXCLUDE)
+            FILES_MATCHING PATTERN "*.h" PATTERN "internal" EXCLUDE ${skip_eval})
   endforeach()
 endforeach()
 
