@@ -201,7 +201,7 @@ CLI::App* addExploreCommand(CLI::App& app, ExploreOptions& o) {
       ->capture_default_str();
   cmd->add_option("--dead-end", o.dead_end,
                   "X0,Y0,X1,Y1: a dead end from above (metres); report.json then times how long "
-                  "each planner took to leave it (worlds/deadend.yaml: 10.1,3,32.1,5)");
+                  "each planner took to leave it");
   cmd->add_option("--dead-end-mouth", o.dead_end_mouth,
                   "X,Y: where the dead end opens (metres); default: its point nearest the start");
   cmd->add_option("--tree-box", o.tree_box,

@@ -8,19 +8,9 @@
 
 #include "strata/align/internal/pose_graph_steps.h"
 #include "strata/core/error.h"
+#include "strata/core/validate.h"
 
 namespace strata::align {
-namespace {
-
-void requirePositive(double value, const char* field) {
-  if (!std::isfinite(value) || value <= 0.0) {
-    throw InputError(std::string("PoseGraphConfig.") + field + " must be finite and > 0, not " +
-                     std::to_string(value));
-  }
-}
-
-}  // namespace
-
 void PoseGraphConfig::validate() const {
   const store::Matrix6d& info = default_odometry_information;
   if (!info.allFinite() || (info - info.transpose()).norm() > 1e-9 * info.norm() ||
@@ -29,13 +19,13 @@ void PoseGraphConfig::validate() const {
         "PoseGraphConfig.default_odometry_information must be finite, symmetric and positive "
         "definite");
   }
-  requirePositive(switch_prior_weight, "switch_prior_weight");
+  requirePositive(switch_prior_weight, "PoseGraphConfig", "switch_prior_weight");
   if (!(switch_accept >= 0.0 && switch_accept < 1.0)) {
     throw InputError("PoseGraphConfig.switch_accept must be in [0, 1), not " +
                      std::to_string(switch_accept));
   }
-  requirePositive(consensus_translation_m, "consensus_translation_m");
-  requirePositive(consensus_rotation_rad, "consensus_rotation_rad");
+  requirePositive(consensus_translation_m, "PoseGraphConfig", "consensus_translation_m");
+  requirePositive(consensus_rotation_rad, "PoseGraphConfig", "consensus_rotation_rad");
   if (min_consensus_loops < 1) throw InputError("PoseGraphConfig.min_consensus_loops must be >= 1");
   if (max_iterations < 1) throw InputError("PoseGraphConfig.max_iterations must be >= 1");
   if (threads < 1) throw InputError("PoseGraphConfig.threads must be >= 1");

@@ -4,28 +4,18 @@
 #include <sstream>
 
 #include "strata/core/error.h"
+#include "strata/core/validate.h"
 #include "strata/map/block_index.h"
 
 namespace strata {
-namespace {
-
-void requirePositive(float value, const char* field) {
-  if (!std::isfinite(value) || value <= 0.0f) {
-    std::ostringstream msg;
-    msg << "invalid map config: " << field << " = " << value << " must be finite and positive";
-    throw InputError(msg.str());
-  }
-}
-
-}  // namespace
 
 float MapConfig::blockSize() const { return voxel_size_m * static_cast<float>(kBlockEdge); }
 
 void MapConfig::validate() const {
-  requirePositive(voxel_size_m, "voxel_size_m");
-  requirePositive(truncation_voxels, "truncation_voxels");
-  requirePositive(max_weight, "max_weight");
-  requirePositive(max_depth_m, "max_depth_m");
+  requirePositive(voxel_size_m, "MapConfig", "voxel_size_m");
+  requirePositive(truncation_voxels, "MapConfig", "truncation_voxels");
+  requirePositive(max_weight, "MapConfig", "max_weight");
+  requirePositive(max_depth_m, "MapConfig", "max_depth_m");
   if (!std::isfinite(min_depth_m) || min_depth_m < 0.0f || min_depth_m >= max_depth_m) {
     std::ostringstream msg;
     msg << "invalid map config: depth range [" << min_depth_m << ", " << max_depth_m
@@ -50,7 +40,7 @@ void MapConfig::validate() const {
   if (distance_mode != DistanceMode::kAlongRay && distance_mode != DistanceMode::kPointToPlane) {
     throw InputError("invalid map config: unknown distance_mode");
   }
-  requirePositive(normal_max_relative_jump, "normal_max_relative_jump");
+  requirePositive(normal_max_relative_jump, "MapConfig", "normal_max_relative_jump");
   if (allocate_free_space && free_space_pixel_stride == 0) {
     throw InputError("invalid map config: free_space_pixel_stride must be positive");
   }

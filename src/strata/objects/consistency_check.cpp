@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "strata/core/error.h"
+#include "strata/core/validate.h"
 #include "strata/objects/internal/block_sets.h"
 
 namespace strata::objects {
@@ -67,20 +68,14 @@ void requireUnit(float v, const char* field) {
   }
 }
 
-void requirePositive(float v, const char* field) {
-  if (!std::isfinite(v) || v <= 0.0f) {
-    throw InputError(std::string("invalid consistency config: ") + field + " must be > 0");
-  }
-}
-
 }  // namespace
 
 void ConsistencyConfig::validate() const {
-  requirePositive(agreement_band_voxels, "agreement_band_voxels");
-  requirePositive(sdf_tolerance_voxels, "sdf_tolerance_voxels");
+  requirePositive(agreement_band_voxels, "ConsistencyConfig", "agreement_band_voxels");
+  requirePositive(sdf_tolerance_voxels, "ConsistencyConfig", "sdf_tolerance_voxels");
   requireUnit(min_agreement, "min_agreement");
   requireUnit(min_overlap, "min_overlap");
-  requirePositive(free_margin_voxels, "free_margin_voxels");
+  requirePositive(free_margin_voxels, "ConsistencyConfig", "free_margin_voxels");
   requireUnit(max_free_space_violation, "max_free_space_violation");
   if (!std::isfinite(min_weight) || min_weight < 0.0f) {
     throw InputError("invalid consistency config: min_weight must be >= 0");

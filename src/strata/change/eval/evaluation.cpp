@@ -5,6 +5,7 @@
 
 #include "strata/change/eval/internal/evaluation_surface_index.h"
 #include "strata/core/error.h"
+#include "strata/core/validate.h"
 
 namespace strata::change {
 namespace {
@@ -15,17 +16,11 @@ void requireShare(float value, const char* field) {
   }
 }
 
-void requirePositive(float value, const char* field) {
-  if (!std::isfinite(value) || value <= 0.0f) {
-    throw InputError(std::string("invalid evaluation config: ") + field + " must be positive");
-  }
-}
-
 }  // namespace
 
 void EvaluationConfig::validate() const {
-  requirePositive(match_distance_m, "match_distance_m");
-  requirePositive(static_tolerance_m, "static_tolerance_m");
+  requirePositive(match_distance_m, "EvaluationConfig", "match_distance_m");
+  requirePositive(static_tolerance_m, "EvaluationConfig", "static_tolerance_m");
   requireShare(found_min_coverage, "found_min_coverage");
   requireShare(found_min_on_object, "found_min_on_object");
   requireShare(segment_min_on_object, "segment_min_on_object");
