@@ -1,5 +1,6 @@
 // strata-mapper under bad input: 10,000 random, truncated and invalid messages on its input
-// channels are counted per channel, never crash it and never change the map.
+// channels are counted per channel, never crash it and never change the map; a map or object
+// database path it could not save to is refused at start, not after a session.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -8,11 +9,13 @@
 #include <random>
 
 #include "strata/core/atomic_file.h"
+#include "strata/core/error.h"
 #include "strata/lcm/channels.h"
 #include "strata/lcm/convert_frame.h"
 #include "strata/lcm/convert_pose.h"
 #include "strata/lcm/lcm_time.h"
 #include "lcm_test_helpers.h"
+#include "test_utils.h"
 #include "strata/camera_info_t.hpp"
 
 namespace strata::test {
@@ -152,6 +155,27 @@ TEST(LcmMapperFuzz, TenThousandBadMessagesAreCountedAndLeaveTheMapAlone) {
   publisher.publish(wallFrame(0.5), tinyCamera(), t0 + 10000000);
   EXPECT_TRUE(
       InProcessMapper::waitFor([&] { return mapper.outputs().latestStats().frames_fused == 4; }));
+  fs::remove_all(dir);
+}
+
+TEST(LcmMapperOptions, AMapPathItCannotSaveToIsRefusedAtStart) {
+  const fs::path dir = freshTempDir("mapper_paths");
+  apps::MapperOptions options = testMapperOptions();
+  options.map_path = (dir / "no_such_folder" / "map.strata").string();
+  try {
+    options.validate();
+    ADD_FAILURE() << "a map in a folder that does not exist was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("--map"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("does not exist"), std::string::npos) << e.what();
+  }
+  options.map_path = dir.string();  // a folder
+  EXPECT_THROW(options.validate(), InputError);
+  options.map_path = (dir / "map.strata").string();
+  options.objects_path = options.map_path;  // both saves on one file
+  EXPECT_THROW(options.validate(), InputError);
+  options.objects_path.clear();
+  EXPECT_NO_THROW(options.validate());
   fs::remove_all(dir);
 }
 

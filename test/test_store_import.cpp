@@ -1,6 +1,7 @@
 // `strata map import|info|export` on sessions rendered by the simulator in-process: the exported
 // keyframe trajectory is the session's odometry, keyframe selection and odometry edges follow the
-// options, re-imports are skipped, and bad input exits 2.
+// options, re-imports are skipped, and bad input exits 2; info and export never change a byte of
+// the store and refuse files that are not maps; a failed first import leaves no database behind.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -173,6 +174,72 @@ TEST_F(StoreImport, InfoPrintsCountsAndBadInputExitsTwo) {
   const std::string errors = testing::internal::GetCapturedStderr();
   EXPECT_NE(errors.find("absent.sqlite' does not exist"), std::string::npos) << errors;
   EXPECT_NE(errors.find("no_such_session"), std::string::npos) << errors;
+}
+
+TEST_F(StoreImport, ReadingCommandsNeverWriteAndFailedImportsLeaveNoDatabase) {
+  const fs::path db = *dir_ / "read_only.sqlite";
+  apps::MapOptions o;
+  o.action = "import";
+  o.db_path = db.string();
+  o.session_dirs = {session(true).string()};
+  o.quiet = true;
+  testing::internal::CaptureStdout();
+  ASSERT_EQ(apps::runMap(o), 0);
+  testing::internal::GetCapturedStdout();
+  const std::string before = readText(db);
+
+  // info and export leave the map byte for byte as it was.
+  o.action = "info";
+  testing::internal::CaptureStdout();
+  EXPECT_EQ(apps::runMap(o), 0);
+  o.action = "export";
+  o.out_dir = (*dir_ / "read_only_export").string();
+  EXPECT_EQ(apps::runMap(o), 0);
+  testing::internal::GetCapturedStdout();
+  EXPECT_EQ(readText(db), before);
+
+  // An empty file and a file that is not SQLite stay as they were and are named.
+  const fs::path empty = *dir_ / "empty.sqlite";
+  std::ofstream(empty).close();
+  const fs::path text = *dir_ / "notes.sqlite";
+  std::ofstream(text) << "not a database\n";
+  testing::internal::CaptureStderr();
+  for (const fs::path& bad : {empty, text}) {
+    for (const char* action : {"info", "export"}) {
+      o.action = action;
+      o.db_path = bad.string();
+      o.out_dir = (*dir_ / "bad_export").string();
+      EXPECT_EQ(apps::runMap(o), 2) << action << " " << bad;
+    }
+  }
+  const std::string errors = testing::internal::GetCapturedStderr();
+  EXPECT_NE(errors.find("empty.sqlite' is empty, not a Strata map"), std::string::npos) << errors;
+  EXPECT_NE(errors.find("notes.sqlite"), std::string::npos) << errors;
+  EXPECT_EQ(fs::file_size(empty), 0u);
+  EXPECT_EQ(readText(text), "not a database\n");
+  EXPECT_FALSE(fs::exists(*dir_ / "bad_export"));
+
+  // The export folder may not be the database itself.
+  o.action = "export";
+  o.db_path = db.string();
+  o.out_dir = db.string();
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(apps::runMap(o), 2);
+  testing::internal::GetCapturedStderr();
+  EXPECT_EQ(readText(db), before);
+
+  // A first import that fails (a folder that is not a session) leaves no database.
+  const fs::path fresh = *dir_ / "fresh.sqlite";
+  const fs::path not_a_session = *dir_ / "not_a_session";
+  fs::create_directories(not_a_session);
+  o.action = "import";
+  o.db_path = fresh.string();
+  o.session_dirs = {not_a_session.string()};
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(apps::runMap(o), 2);
+  testing::internal::GetCapturedStderr();
+  EXPECT_FALSE(fs::exists(fresh));
+  EXPECT_FALSE(fs::exists(fresh.string() + "-wal"));
 }
 
 }  // namespace

@@ -85,6 +85,13 @@ TEST(World, MalformedFilesNameLineAndField) {
        "bad.yaml:4: objects[0].albedo[2]: must be in [0, 255]"},
       {"rooms:\n  - {min: [0, 0], max: [0, 3], height: 2.5}\nobjects: []\n",
        "bad.yaml:2: rooms[0].max: must exceed min"},
+      // The limits of world_spec.h, each just over.
+      {"rooms:\n  - {min: [0, 0], max: [200.5, 3], height: 2.5}\nobjects: []\n",
+       "bad.yaml:2: rooms[0].max: a room side may be at most 200 m"},
+      {"rooms:\n  - {min: [0, 0], max: [4, 3], height: 50.5}\nobjects: []\n",
+       "bad.yaml:2: rooms[0].height: may be at most 50 m"},
+      {"rooms:\n  - {min: [1000.5, 0], max: [1004, 3], height: 2.5}\nobjects: []\n",
+       "bad.yaml:2: rooms[0].min: every coordinate must be within 1000 m"},
       {"seed: 1\nrooms: [{min: [0, 0], max: [4, 3], height: 2.5}]\n"
        "objects: [{type: box, size: [1, 1, 1]}]\nchanges:\n  move_probability: 1.5\n",
        "bad.yaml:5: changes.move_probability: must be in [0, 1]"},
@@ -93,6 +100,8 @@ TEST(World, MalformedFilesNameLineAndField) {
       {"rooms: [{min: [0, 0], max: [4, 3], height: 2.5}]\npool:\n"
        "  - {type: box, size: [1, 1, 1], at: [1, 1]}\n",
        "bad.yaml:3: pool[0].at: pool objects are placed by the seed"},
+      {"rooms: [{min: [0, 0], max: [4, 3], height: 2.5}]\nsessions: 3\nsessions: 4\n",
+       "bad.yaml:3: sessions: given twice"},
       {"rooms: [{min: [0, 0], max: [4, 3], height: 2.5}]\nsesions: 3\n",
        "bad.yaml:2: sesions: unknown key (did you mean 'sessions'?)"},
       {"rooms: [{min: [0, 0], max: [4, 3], height: 2.5}]\ndoors: [{at: [2, 1.5]}]\n"

@@ -8,6 +8,10 @@
 // loops.csv, report.json and trajectories.png (top-down, before and after, loops drawn). When
 // every folder has groundtruth.txt beside the odometry.txt it aligned, report.json also scores
 // the result against it (ATE before/after, loops checked against the truth).
+// Options and paths (outputs against the session folders and the database) are checked before
+// anything is read or made. The imports, the alignment and the files are one transaction of the
+// database: a failed run leaves it as it was (no half-made session for the next `align --db`)
+// and no output behind.
 // Exit 0 done (also when a session stays unaligned: reported), 2 bad input, 1 other failures.
 #include <string>
 #include <vector>

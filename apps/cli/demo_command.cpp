@@ -19,6 +19,7 @@
 #include "strata/change/eval/evaluation_session.h"
 #include "strata/change/eval/evaluation_world.h"
 #include "strata/core/error.h"
+#include "strata/core/output_paths.h"
 #include "strata/mapper/eval/accuracy.h"
 #include "strata/io/image_io.h"
 #include "strata/raycast/raycast.h"
@@ -135,6 +136,15 @@ DemoReport runDemoPipeline(const DemoOptions& o) {
   }
   if (o.vio.enabled) o.vio.validate();
   if (o.vio.enabled && o.align) throw InputError("--align and --vio cannot be combined (yet)");
+  if (o.out_dir.empty()) throw InputError("--out DIR must not be empty");
+  {  // The output folder before minutes of work: writable, not a file, not the world file.
+    OutputPaths paths;
+    if (!o.world.empty() && fs::is_regular_file(o.world)) {
+      paths.inputFile(o.world, "the world file");
+    }
+    paths.outputFolder(o.out_dir, "--out");
+    paths.check();
+  }
   const auto world = sim::loadWorld(o.world, o.seed, o.sessions);
   sim::SimSessionConfig config = sim::sessionConfig(30.0, o.frames, !o.no_noise, o.align);
   // Alignment finds places by ORB corners in the colour images: --align renders them with the

@@ -3,6 +3,9 @@
 // (a TUM RGB-D / 7-Scenes folder, e.g. written by `strata sim`, or a saved .strata map) is fused
 // into its own layer of a ChangeDetector, in the order given; then the static map's mesh, one PLY
 // per discovered object per session, a label overlay PNG per session and report.json are written.
+// Options and paths are checked before any session is read; saved maps must share one voxel grid
+// (the error names both files); --out is made only with the results, and a failed write leaves
+// none of them.
 #include <string>
 #include <vector>
 

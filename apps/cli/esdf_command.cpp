@@ -7,8 +7,10 @@
 #include <sstream>
 
 #include "cli/esdf_slice.h"
+#include "cli/option_checks.h"
 #include "strata/core/clock.h"
 #include "strata/core/error.h"
+#include "strata/core/output_paths.h"
 #include "strata/mapper/mapper.h"
 #include "strata/io/image_io.h"
 #include "strata/esdf/esdf.h"
@@ -59,7 +61,20 @@ std::string sliceSummary(const EsdfOptions& o, const EsdfMap& esdf) {
   return s.str();
 }
 
+/// The options and the output against the map, before the map is read or a device is opened
+/// (the parser refuses only NaN and inf; tests call runEsdf without it).
+void validate(const EsdfOptions& o) {
+  if (o.map_path.empty()) throw InputError("no map file given");
+  requireFiniteHeight(o.slice_z_m, "--slice-z");
+  requireNumber(o.max_distance_m, "--max-distance", "metres", 0.0, false);
+  OutputPaths paths;
+  paths.inputFile(o.map_path, "the map");
+  paths.outputFile(o.png_path, "--png");
+  paths.check();
+}
+
 int runChecked(const EsdfOptions& o) {
+  validate(o);
   const TsdfMap tsdf = loadMap(o.map_path);
   EsdfConfig config;
   config.max_distance_m = o.max_distance_m;
@@ -108,10 +123,13 @@ int runChecked(const EsdfOptions& o) {
 CLI::App* addEsdfCommand(CLI::App& app, EsdfOptions& o) {
   CLI::App* esdf = app.add_subcommand("esdf", "Compute a saved map's ESDF, write a slice picture");
   esdf->add_option("map", o.map_path, "Map file (.strata)")->required();
-  esdf->add_option("--slice-z", o.slice_z_m, "Height of the slice, metres")->capture_default_str();
+  esdf->add_option("--slice-z", o.slice_z_m, "Height of the slice, metres")
+      ->check(finiteNumber())
+      ->capture_default_str();
   esdf->add_option("--png", o.png_path, "Write the colour-mapped slice here (PNG)");
   esdf->add_option("--max-distance", o.max_distance_m,
                    "ESDF maximum distance (also caps the colour range), metres")
+      ->check(finiteNumber())
       ->capture_default_str();
   esdf->add_flag("--voxel-size-check", o.voxel_size_check,
                  "Compare with the C++ reference: at most 0.2 % of voxels off by over one voxel");

@@ -1,6 +1,8 @@
 #pragma once
 // `strata esdf MAP --slice-z 1.0 --png out.png`: load a saved map, compute its ESDF on the device
-// (DeviceEsdf::updateAll), write a colour-mapped horizontal slice and print a summary.
+// (DeviceEsdf::updateAll), write a colour-mapped horizontal slice and print a summary. The options
+// (finite --slice-z, positive finite --max-distance) and --png (a file in a writable folder, not
+// the map) are checked before the map is read or a device is opened.
 #include <cstddef>
 #include <string>
 
@@ -25,7 +27,8 @@ struct EsdfOptions {
 CLI::App* addEsdfCommand(CLI::App& app, EsdfOptions& options);
 
 /// Runs it; returns the exit code (0 ok, 1 check failed / other error, 2 bad input naming the
-/// problem (missing or corrupt map file, no block at the slice height), 3 device error).
+/// problem (bad option, --png over the map, missing or corrupt map file, no block at the slice
+/// height), 3 device error).
 int runEsdf(const EsdfOptions& options);
 
 }  // namespace strata::apps

@@ -9,8 +9,11 @@
 #include <vector>
 
 #include "cli/explore_outputs.h"
+#include "cli/option_checks.h"
+#include "cli/run_outputs.h"
 #include "strata/sim/sim_setup.h"
 #include "strata/core/error.h"
+#include "strata/core/output_paths.h"
 #include "strata/explore/dead_end.h"
 #include "strata/explore/history_planner.h"
 #include "strata/explore/nbvp_planner.h"
@@ -21,6 +24,9 @@ namespace {
 
 namespace fs = std::filesystem;
 constexpr float kDefaultStartHeightM = 1.2f;
+// The camera's image: ExplorationConfig::validate()'s smallest, and a bound on the largest.
+constexpr int kMinCameraPx = 8;
+constexpr int kMaxCameraPx = 8192;
 
 /// `count` comma-separated finite numbers, else an InputError naming the option and `expected`.
 std::vector<float> parseNumbers(const std::string& text, std::size_t count, const char* option,
@@ -42,9 +48,13 @@ Eigen::Vector3f parseStart(const std::string& text) {
   return {v[0], v[1], v[2]};
 }
 
-/// The dead end to time, if any: its region and where it opens.
-std::optional<explore::DeadEnd> parseDeadEnd(const ExploreOptions& o,
-                                             const Eigen::Vector3f& start_W) {
+/// --dead-end and --dead-end-mouth as given, checked before any file is read.
+struct DeadEndOption {
+  Eigen::AlignedBox2f region;
+  std::optional<Eigen::Vector2f> mouth;
+};
+
+std::optional<DeadEndOption> parseDeadEndOption(const ExploreOptions& o) {
   if (o.dead_end.empty()) {
     if (!o.dead_end_mouth.empty()) throw InputError("--dead-end-mouth needs --dead-end");
     return std::nullopt;
@@ -55,17 +65,26 @@ std::optional<explore::DeadEnd> parseDeadEnd(const ExploreOptions& o,
     throw InputError(std::string("--dead-end: expected ") + expected + ", got '" + o.dead_end +
                      "'");
   }
-  const Eigen::AlignedBox2f region(Eigen::Vector2f(v[0], v[1]), Eigen::Vector2f(v[2], v[3]));
-  if (o.dead_end_mouth.empty()) {
-    if (region.contains(start_W.head<2>())) {
-      throw InputError(
-          "--dead-end: the start lies inside the dead end; say where it opens with "
-          "--dead-end-mouth X,Y");
-    }
-    return explore::deadEndSeenFrom(region, start_W);
+  DeadEndOption out{Eigen::AlignedBox2f(Eigen::Vector2f(v[0], v[1]), Eigen::Vector2f(v[2], v[3])),
+                    std::nullopt};
+  if (!o.dead_end_mouth.empty()) {
+    const std::vector<float> m = parseNumbers(o.dead_end_mouth, 2, "--dead-end-mouth", "X,Y");
+    out.mouth = Eigen::Vector2f(m[0], m[1]);
   }
-  const std::vector<float> m = parseNumbers(o.dead_end_mouth, 2, "--dead-end-mouth", "X,Y");
-  return explore::DeadEnd{region, Eigen::Vector2f(m[0], m[1])};
+  return out;
+}
+
+/// The dead end to time, if any: its region and where it opens.
+std::optional<explore::DeadEnd> deadEndFor(const std::optional<DeadEndOption>& option,
+                                           const Eigen::Vector3f& start_W) {
+  if (!option) return std::nullopt;
+  if (option->mouth) return explore::DeadEnd{option->region, *option->mouth};
+  if (option->region.contains(start_W.head<2>())) {
+    throw InputError(
+        "--dead-end: the start lies inside the dead end; say where it opens with "
+        "--dead-end-mouth X,Y");
+  }
+  return explore::deadEndSeenFrom(option->region, start_W);
 }
 
 explore::ExplorationConfig loopConfig(const ExploreOptions& o) {
@@ -145,30 +164,69 @@ explore::ExplorationResult runOne(const std::string& name, const ExploreOptions&
   return result;
 }
 
-int runChecked(const ExploreOptions& o) {
+const std::vector<std::string> kPlannerFiles = {"curve.csv", "steps.csv", "path.png",
+                                                "map.strata", "mesh.ply"};
+
+/// Every option, before any file is read: InputError naming the option and what it accepts.
+void checkOptions(const ExploreOptions& o) {
   if (o.world_path.empty()) throw InputError("a world file is required");
-  if (!fs::exists(o.world_path)) throw InputError("world file '" + o.world_path + "' not found");
   if (o.out_dir.empty()) throw InputError("--out DIR is required");
-  if (!std::isfinite(o.start_yaw_deg)) throw InputError("--start-yaw must be a finite angle");
   if (o.planner != "history" && o.planner != "nbvp") {
-    throw InputError("--planner must be history or nbvp, got '" + o.planner + "'");
+    throw InputError("--planner: unknown planner '" + o.planner + "' (choose history or nbvp)");
   }
+  requireNumber(o.time_limit_s, "--time-limit", "simulated seconds", 0.0, false);
+  requireNumberIn(o.voxel_size_m, "--voxel", "metres", 0.001, 1.0);  // MapConfig's range
+  requireNumber(o.eval_period_s, "--eval-period", "simulated seconds", 0.0, false);
+  if (!std::isfinite(o.start_yaw_deg)) {
+    throw InputError("--start-yaw must be a finite angle in degrees, not " +
+                     std::to_string(o.start_yaw_deg));
+  }
+  requireCount(o.camera_width_px, "--width", kMinCameraPx, kMaxCameraPx);
+  requireCount(o.camera_height_px, "--height", kMinCameraPx, kMaxCameraPx);
+  if (!o.start.empty()) parseStart(o.start);
+}
+
+/// The world against the outputs: the folder, its files and each planner's folder.
+void checkOutputs(const ExploreOptions& o, const std::vector<std::string>& planners) {
+  OutputPaths paths;
+  paths.inputFile(o.world_path, "the world file");
+  outputFolderFiles(paths, o.out_dir, "--out", {"curve.png", "report.json"});
+  for (const std::string& name : planners) {
+    outputFolderFiles(paths, (fs::path(o.out_dir) / name).string(), "--out", kPlannerFiles);
+  }
+  paths.check();
+}
+
+int runChecked(const ExploreOptions& o) {
+  checkOptions(o);
   const explore::ExplorationConfig config = loopConfig(o);
   const std::optional<Eigen::Vector3f> tree_box = parseTreeBox(o.tree_box);
+  const std::optional<DeadEndOption> dead_end_option = parseDeadEndOption(o);
+  std::vector<std::string> planners = {o.planner};
+  if (o.compare) planners = {"history", "nbvp"};
+  checkOutputs(o, planners);
+  if (!fs::exists(o.world_path)) throw InputError("world file '" + o.world_path + "' not found");
   const auto world = sim::loadWorld(o.world_path, 0, 1);
   const Eigen::Vector3f start = o.start.empty()
                                     ? explore::defaultStart(*world, kDefaultStartHeightM, config)
                                     : parseStart(o.start);
-  const std::optional<explore::DeadEnd> dead_end = parseDeadEnd(o, start);
+  const std::optional<explore::DeadEnd> dead_end = deadEndFor(dead_end_option, start);
   const Eigen::AlignedBox3d b = world->bounds();
   const explore::ExplorationTruth truth(*world, {b.min().cast<float>(), b.max().cast<float>()},
                                         start, o.voxel_size_m);
   vk::ContextOptions context_options;
   context_options.device_selector = o.device;
   const auto context = vk::Context::create(context_options);
+  // A failed run (a planner, the device, a write) leaves none of its files, nor the folders it
+  // made.
+  OutputCleanup cleanup;
+  std::vector<std::string> names = {"curve.png", "report.json"};
+  names.insert(names.end(), planners.begin(), planners.end());
+  cleanup.folder(o.out_dir, names);
+  for (const std::string& name : planners) {
+    cleanup.folder((fs::path(o.out_dir) / name).string(), kPlannerFiles);
+  }
   fs::create_directories(o.out_dir);
-  std::vector<std::string> planners = {o.planner};
-  if (o.compare) planners = {"history", "nbvp"};
   std::vector<explore::ExplorationResult> results;
   for (const std::string& name : planners) {
     results.push_back(runOne(name, o, *world, truth, config, start, tree_box, *context));
@@ -176,6 +234,7 @@ int runChecked(const ExploreOptions& o) {
   writeExploreCurvePng((fs::path(o.out_dir) / "curve.png").string(), world->name(), results);
   writeExploreReport((fs::path(o.out_dir) / "report.json").string(), world->name(), results, config,
                      start, o.seed, dead_end);
+  cleanup.keep();
   return 0;
 }
 
@@ -185,20 +244,25 @@ CLI::App* addExploreCommand(CLI::App& app, ExploreOptions& o) {
   CLI::App* cmd = app.add_subcommand(
       "explore", "Closed-loop exploration of a simulated world (history-aware planner or NBVP)");
   cmd->add_option("world", o.world_path, "World file (YAML)")->required();
-  cmd->add_option("--planner", o.planner, "history or nbvp")->capture_default_str();
+  cmd->add_option("--planner", o.planner, "history or nbvp")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"history", "nbvp"}));
   cmd->add_flag("--compare", o.compare, "Run both planners (same world, start and seed)");
   cmd->add_option("--seed", o.seed, "Seed of the planners' sampling and the camera noise")
       ->capture_default_str();
-  cmd->add_option("--time-limit", o.time_limit_s, "Simulated seconds per run")
-      ->capture_default_str();
-  cmd->add_option("--voxel", o.voxel_size_m, "Voxel size of the map and the truth, metres")
-      ->capture_default_str();
+  cmd->add_option("--time-limit", o.time_limit_s, "Simulated seconds per run (> 0)")
+      ->capture_default_str()
+      ->check(finiteNumber());
+  cmd->add_option("--voxel", o.voxel_size_m, "Voxel size of the map and the truth, metres (> 0)")
+      ->capture_default_str()
+      ->check(finiteNumber());
   cmd->add_option("--start", o.start,
                   "Start X,Y,Z (metres); default: nearest the first room's centre at 1.2 m with "
                   "room for the start clearing");
   cmd->add_option("--start-yaw", o.start_yaw_deg,
                   "Heading at the start, degrees about world z from +x")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(finiteNumber());
   cmd->add_option("--dead-end", o.dead_end,
                   "X0,Y0,X1,Y1: a dead end from above (metres); report.json then times how long "
                   "each planner took to leave it");
@@ -207,11 +271,16 @@ CLI::App* addExploreCommand(CLI::App& app, ExploreOptions& o) {
   cmd->add_option("--tree-box", o.tree_box,
                   "X,Y,Z: half extents of the local tree's sampling box around the robot, metres "
                   "(default 4,4,0.6)");
-  cmd->add_option("--width", o.camera_width_px, "Camera width, px")->capture_default_str();
-  cmd->add_option("--height", o.camera_height_px, "Camera height, px")->capture_default_str();
+  cmd->add_option("--width", o.camera_width_px, "Camera width, px")
+      ->capture_default_str()
+      ->check(CLI::Range(kMinCameraPx, kMaxCameraPx));
+  cmd->add_option("--height", o.camera_height_px, "Camera height, px")
+      ->capture_default_str()
+      ->check(CLI::Range(kMinCameraPx, kMaxCameraPx));
   cmd->add_option("--eval-period", o.eval_period_s,
-                  "Simulated seconds between evaluations of the explored share")
-      ->capture_default_str();
+                  "Simulated seconds between evaluations of the explored share (> 0)")
+      ->capture_default_str()
+      ->check(finiteNumber());
   cmd->add_option("--out", o.out_dir, "Output folder")->required();
   cmd->add_option("--device", o.device,
                   "Vulkan device index or name substring (env STRATA_DEVICE)");

@@ -4,6 +4,8 @@
 // a simulated world (explore/exploration_loop.h) with the history-aware planner, the NBVP baseline,
 // or both. Writes per planner DIR/<planner>/{curve.csv, path.png, map.strata, mesh.ply}, and
 // DIR/curve.png (explored share vs simulated time) and DIR/report.json. Progress on stderr.
+// Options and the outputs against the world file are checked before it is read; a failed run
+// leaves none of its files (nor the folders it made).
 #include <string>
 
 namespace CLI {

@@ -1,6 +1,10 @@
 #pragma once
 // `strata fuse [DATASET]`: fuse a dataset (TUM, 7-Scenes, or the built-in analytic scene) into a
-// TSDF map on the device, then write the mesh, the map and a rendered view.
+// TSDF map on the device, then write the mesh, the map and a rendered view. The options (finite
+// numbers in range, known modes) and every output (against the dataset folder, --camera and each
+// other; each a file in a writable folder) are checked before the dataset is opened or a device
+// is made. Exit 0 on success, 2 on bad input (named), 3 on a device error, 1 otherwise (a frame
+// that fails part-way keeps what was fused before it: written, exit 1).
 #include <string>
 
 #include "strata/io/open_dataset.h"

@@ -2,21 +2,28 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <filesystem>
 #include <optional>
 
 #include "cli/map_info.h"
 #include "strata/core/progress.h"
 #include "strata/core/error.h"
+#include "strata/core/output_paths.h"
 #include "strata/store/session_import.h"
 
 namespace strata::apps {
 
 namespace {
 
-int runImport(const MapOptions& o) {
-  store::ImportOptions options;
-  options.keyframe_every = o.keyframe_every;
-  options.keyframe_distance_m = o.keyframe_distance_m;
+/// Removes a database file this run created (with SQLite's journal files) after a failure, so a
+/// failed first import leaves no empty map behind.
+void removeCreatedDatabase(const std::string& path) {
+  std::error_code ignored;
+  for (const char* suffix : {"", "-wal", "-shm", "-journal"})
+    std::filesystem::remove(path + suffix, ignored);
+}
+
+int importInto(const MapOptions& o, const store::ImportOptions& options) {
   store::Store db(o.db_path);
   std::size_t imported = 0;
   for (const std::string& dir : o.session_dirs) {
@@ -44,9 +51,27 @@ int runImport(const MapOptions& o) {
   return 0;
 }
 
+int runImport(const MapOptions& o) {
+  for (const std::string& dir : o.session_dirs) {  // before the database is opened or made
+    if (!std::filesystem::is_directory(dir)) {
+      throw InputError("session folder '" + dir + "' does not exist or is not a folder");
+    }
+  }
+  store::ImportOptions options;
+  options.keyframe_every = o.keyframe_every;
+  options.keyframe_distance_m = o.keyframe_distance_m;
+  const bool existed = std::filesystem::exists(o.db_path);
+  try {
+    return importInto(o, options);
+  } catch (...) {
+    if (!existed) removeCreatedDatabase(o.db_path);
+    throw;
+  }
+}
+
 int runInfo(const MapOptions& o) {
   store::StoreOptions options;
-  options.create = false;
+  options.read_only = true;  // a command that reads never writes
   store::Store db(o.db_path, options);
   const std::vector<store::SessionSummary> summary = db.summary();
   std::vector<store::ResourceProblem> problems;
@@ -58,9 +83,16 @@ int runInfo(const MapOptions& o) {
 }
 
 int runExport(const MapOptions& o) {
+  OutputPaths paths;
+  paths.inputFile(o.db_path, "the map database");
+  paths.outputFolder(o.out_dir, "--out");
+  paths.check();
   store::StoreOptions options;
-  options.create = false;
+  options.read_only = true;  // a command that reads never writes
   store::Store db(o.db_path, options);
+  if (db.sessions().empty()) {
+    throw InputError("map database '" + o.db_path + "' holds no session: nothing to export");
+  }
   const std::vector<std::string> files = store::exportTrajectories(db, o.out_dir);
   for (const std::string& f : files) std::printf("Wrote %s\n", f.c_str());
   std::printf("Exported %zu sessions of %s into %s\n", db.sessions().size(), o.db_path.c_str(),
@@ -84,21 +116,19 @@ CLI::App* addMapCommand(CLI::App& app, MapOptions& o) {
                    "Or after this much motion, metres (0: off)")
       ->capture_default_str();
   import->add_flag("--quiet", o.quiet, "No progress bar");
-  import->callback([&o] { o.action = "import";
-});
-CLI::App* info = map->add_subcommand("info", "Sessions, counts, path lengths and time spans");
-info->add_option("--db", o.db_path, "Map database")->required();
-info->add_flag("--json", o.json, "Print JSON instead of a table");
-info->add_flag("--verify", o.verify,
-               "Check every resource's size and CRC-32 (exit 2 if any "
-               "is missing or changed)");
-info->callback([&o] { o.action = "info"; });
-CLI::App* out = map->add_subcommand("export", "Each session's keyframe trajectory as TUM files");
-out->add_option("--db", o.db_path, "Map database")->required();
-out->add_option("--out", o.out_dir, "Output folder")->required();
-out->callback([&o] { o.action = "export"; });
-return map;
-}  // namespace strata::apps
+  import->callback([&o] { o.action = "import"; });
+  CLI::App* info = map->add_subcommand("info", "Sessions, counts, path lengths and time spans");
+  info->add_option("--db", o.db_path, "Map database")->required();
+  info->add_flag("--json", o.json, "Print JSON instead of a table");
+  info->add_flag("--verify", o.verify,
+                 "Check every resource's size and CRC-32 (exit 2 if any is missing or changed)");
+  info->callback([&o] { o.action = "info"; });
+  CLI::App* out = map->add_subcommand("export", "Each session's keyframe trajectory as TUM files");
+  out->add_option("--db", o.db_path, "Map database")->required();
+  out->add_option("--out", o.out_dir, "Output folder")->required();
+  out->callback([&o] { o.action = "export"; });
+  return map;
+}
 
 int runMap(const MapOptions& o) {
   const std::string command = "strata map " + o.action;

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "strata/core/error.h"
+#include "strata/core/output_paths.h"
 #include "strata/map/map_file.h"
 #include "strata/mesh/extract_mesh.h"
 #include "strata/mesh/ply.h"
@@ -20,6 +21,12 @@ CLI::App* addMeshCommand(CLI::App& app, MeshOptions& o) {
 
 int runMesh(const MeshOptions& o) {
   try {
+    if (o.map_path.empty()) throw InputError("no map file given");
+    if (o.out_path.empty()) throw InputError("--out must name a file");
+    OutputPaths paths;
+    paths.inputFile(o.map_path, "the map");
+    paths.outputFile(o.out_path, "--out");
+    paths.check();
     const TsdfMap map = loadMap(o.map_path);
     const Mesh mesh = extractMesh(map);
     writePly(o.out_path, mesh);

@@ -1,5 +1,7 @@
 #pragma once
-// `strata mesh MAP --out mesh.ply`: marching cubes over a saved map.
+// `strata mesh MAP --out mesh.ply`: marching cubes over a saved map. --out is checked (a file in a
+// writable folder, not the map) before the map is read. Exit 0 on success, 2 on bad input
+// (named), 1 on other errors.
 #include <string>
 
 namespace CLI {

@@ -4,7 +4,9 @@
 // `strata diff` does; the objects that moved are matched, merged into object models or found new
 // ones (objects/object_database.h), and the files of cli/objects_outputs.h are written. Session
 // folders from `strata sim` bring their ground truth: the database is then scored against it
-// (eval/object_db_eval.h) under "truth" in objects.json.
+// (eval/object_db_eval.h) under "truth" in objects.json. Options and paths (--out, its files and
+// --before-after against the sessions and --world) are checked before any session is read; --out
+// is made only with the results, and a failed write leaves none of them.
 #include <string>
 #include <vector>
 

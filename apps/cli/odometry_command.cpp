@@ -4,20 +4,25 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
 #include "cli/odometry_summary.h"
+#include "cli/run_outputs.h"
 #include "strata/core/progress.h"
 #include "cli/trajectory_plot.h"
 #include "strata/core/atomic_file.h"
 #include "strata/core/error.h"
+#include "strata/core/output_paths.h"
 #include "strata/io/tum_format.h"
 #include "strata/odometry/pipeline/vio_replay.h"
 #include "strata/io/tum_writer.h"
 
 namespace strata::apps {
 namespace {
+
+namespace fs = std::filesystem;
 
 // CPU time of the whole process: what the replay costs whatever else loads the machine.
 double processCpuSeconds() {
@@ -67,6 +72,74 @@ std::string defaultSummaryPath(const std::string& out_path) {
   std::filesystem::path p(out_path);
   p.replace_extension(".json");
   return p.string();
+}
+
+/// The options alone, before any file is read (here, not in the parser: tests call runOdometry
+/// without it, and bad input exits 2).
+void validate(const OdometryOptions& o) {
+  if (o.mode != "vio") {
+    throw InputError("--mode " + o.mode +
+                     " is not known (vio; RGB-D tracking is `strata fuse --track`)");
+  }
+  if (o.session_dir.empty()) throw InputError("no session folder given");
+  if (o.window < 2) {
+    throw InputError("--window must be at least 2 (got " + std::to_string(o.window) + ")");
+  }
+  if (o.max_features < 0) {
+    throw InputError("--features must be >= 0 (0: the front end's default; got " +
+                     std::to_string(o.max_features) + ")");
+  }
+  if (o.frames < 0) {
+    throw InputError("--frames must be >= 0 (0: all; got " + std::to_string(o.frames) + ")");
+  }
+  if (o.out_path.empty()) throw InputError("--out must name a file");
+}
+
+/// The session's mav0 folder as EurocDataset::open finds it, and the folder holding it.
+std::pair<fs::path, fs::path> sessionFolders(const std::string& session_dir) {
+  const fs::path root(session_dir);
+  std::error_code error;
+  if (!fs::is_directory(root / "mav0", error) && fs::is_directory(root / "cam0", error)) {
+    return {root, fs::absolute(root, error).parent_path()};  // opened at mav0/ itself
+  }
+  return {root / "mav0", root};
+}
+
+/// Every output against the session's files and each other, before anything is read. The inputs
+/// are mav0/ (images, IMU, calibration, truth) and groundtruth_body.txt, not the whole session
+/// folder: outputs beside them (e.g. SESSION/vio.txt, rewritten by a second run) are fine.
+void checkPaths(const OdometryOptions& o, const std::string& summary_path) {
+  const auto [mav0, session] = sessionFolders(o.session_dir);
+  OutputPaths paths;
+  paths.inputFolder(mav0.string(), "the session's mav0 folder");
+  paths.inputFile((session / "groundtruth_body.txt").string(),
+                  "the session's groundtruth_body.txt");
+  paths.outputFile(o.out_path, "--out");
+  paths.outputFile(summary_path,
+                   o.summary_path.empty() ? "--summary (default: --out with .json)" : "--summary");
+  paths.outputFile(o.plot_path, "--plot");
+  paths.outputFile(o.frames_csv_path, "--frames-csv");
+  paths.check();
+}
+
+/// Stereo unless --mono: a session without a right camera is refused, not run as mono.
+void requireRightCamera(const OdometryOptions& o) {
+  if (o.mono) return;
+  const fs::path mav0 = sessionFolders(o.session_dir).first;
+  std::error_code error;
+  if (fs::is_directory(mav0, error) && !fs::exists(mav0 / "cam1", error)) {
+    throw InputError(o.session_dir + ": the session has no right camera (" +
+                     (mav0 / "cam1").string() +
+                     " is missing): stereo VIO needs it; give --mono to run on cam0 alone");
+  }
+}
+
+/// The first tracked frame whose pose is not finite (the estimate diverged), or null.
+const odometry::PipelineFrame* firstNonFinite(const std::vector<odometry::PipelineFrame>& frames) {
+  for (const auto& f : frames) {
+    if (!f.T_W_C.matrix().allFinite() || !f.v_W_B.allFinite()) return &f;
+  }
+  return nullptr;
 }
 
 // Replays the session through the pipeline, reporting failures as they happen.
@@ -152,7 +225,9 @@ CLI::App* addOdometryCommand(CLI::App& app, OdometryOptions& o) {
   cmd->add_option("--plot", o.plot_path, "Top-down PNG of the trajectory against the truth");
   cmd->add_flag("--anchor-to-truth", o.anchor_to_truth,
                 "Start the world frame at the true pose (yaw, position) when tracking starts");
-  cmd->add_option("--window", o.window, "Keyframes in the sliding window")->capture_default_str();
+  // NOTE: the counts are checked by runOdometry (exit 2 naming the option and its range).
+  cmd->add_option("--window", o.window, "Keyframes in the sliding window (at least 2)")
+      ->capture_default_str();
   cmd->add_option("--features", o.max_features, "Tracks the front end keeps (0: its default)");
   cmd->add_option("--frames", o.frames, "Process only the first N frames (0: all)");
   cmd->add_option("--frames-csv", o.frames_csv_path,
@@ -163,20 +238,49 @@ CLI::App* addOdometryCommand(CLI::App& app, OdometryOptions& o) {
 
 int runOdometry(const OdometryOptions& o) {
   try {
-    if (o.mode != "vio") {
-      throw InputError("--mode " + o.mode +
-                       " is not known (vio; RGB-D tracking is `strata fuse --track`)");
-    }
-    if (o.window < 2) throw InputError("--window must be at least 2");
-    const euroc::EurocDataset dataset =
-        euroc::EurocDataset::open(o.session_dir, euroc::ReaderOptions{1'000'000, !o.mono});
-    OdometryRun run = replay(o, dataset);
-    run.accuracy = evaluateOdometry(dataset, run.tracked);
-    writeTrajectory(o.out_path, run.tracked);
+    validate(o);
     const std::string summary_path =
         o.summary_path.empty() ? defaultSummaryPath(o.out_path) : o.summary_path;
-    const std::string json = odometrySummaryJson(run);
-    writeFileAtomically(summary_path, std::vector<std::uint8_t>(json.begin(), json.end()));
+    checkPaths(o, summary_path);
+    requireRightCamera(o);
+    const euroc::EurocDataset dataset =
+        euroc::EurocDataset::open(o.session_dir, euroc::ReaderOptions{1'000'000, !o.mono});
+    if (!o.mono && !dataset.stereo()) {
+      throw InputError(o.session_dir + ": the session has no right camera: stereo VIO needs it; "
+                       "give --mono to run on cam0 alone");
+    }
+    OutputCleanup cleanup;  // a write that fails takes this run's other new outputs with it
+    for (const std::string& path : {o.out_path, summary_path, o.plot_path, o.frames_csv_path})
+      cleanup.file(path);
+    OdometryRun run = replay(o, dataset);
+    const auto write_summary = [&] {
+      const std::string json = odometrySummaryJson(run);
+      writeFileAtomically(summary_path, std::vector<std::uint8_t>(json.begin(), json.end()));
+    };
+    // A failed run writes no trajectory (nor plot); its summary records the failures.
+    if (run.tracked.empty()) {
+      write_summary();
+      std::fprintf(stderr,
+                   "strata odometry: no frame was tracked (%s); no trajectory written, the "
+                   "failures are in %s\n",
+                   run.stats.failure_log.empty() ? "never initialised"
+                                                 : run.stats.failure_log.back().second.c_str(),
+                   summary_path.c_str());
+      cleanup.keep();  // the summary and the frames CSV say why
+      return 3;
+    }
+    if (const odometry::PipelineFrame* bad = firstNonFinite(run.tracked)) {
+      write_summary();
+      std::fprintf(stderr,
+                   "strata odometry: the estimate diverged: the pose at %.3f s is not finite; "
+                   "no trajectory written, the run's counts are in %s\n",
+                   1e-9 * static_cast<double>(bad->timestamp_ns), summary_path.c_str());
+      cleanup.keep();  // the summary and the frames CSV say why
+      return 3;
+    }
+    run.accuracy = evaluateOdometry(dataset, run.tracked);
+    writeTrajectory(o.out_path, run.tracked);
+    write_summary();
     const auto& s = run.stats;
     std::printf(
         "%s VIO: %zu of %zu frames tracked, %zu failures, %.1f frames/s (front end %.1f + "
@@ -195,12 +299,7 @@ int runOdometry(const OdometryOptions& o) {
         std::printf("Wrote %s\n", o.plot_path.c_str());
       }
     }
-    if (run.tracked.empty()) {
-      std::fprintf(stderr, "strata odometry: no frame was tracked (%s)\n",
-                   run.stats.failure_log.empty() ? "never initialised"
-                                                 : run.stats.failure_log.back().second.c_str());
-      return 3;
-    }
+    cleanup.keep();
     return 0;
   } catch (const InputError& e) {
     std::fprintf(stderr, "strata odometry: input error: %s\n", e.what());

@@ -5,7 +5,14 @@
 // camera-to-world, like groundtruth.txt; tracked frames only) and a JSON summary: frames tracked,
 // failures with their reasons, speed, and, when the session has ground truth, ATE/RPE after
 // SE(3) (and Sim(3)) alignment, the drift from the first pose and the gravity direction error.
-// Exit 0 on success, 2 on bad input (named), 3 when no frame was ever tracked, 1 otherwise.
+// Stereo unless --mono: a session without cam1 is refused (exit 2), not run as mono.
+// Before anything is read, the options are checked and every output (trajectory, summary, plot,
+// frames CSV) against the session's mav0/ and groundtruth_body.txt and against each other (the
+// default summary name included: --out t.json would be its own summary).
+// Exit 0 on success, 2 on bad input (named), 3 when no frame was ever tracked or the estimate
+// diverged (a pose not finite): then no trajectory or plot is written, only the summary with the
+// failures (and the frames CSV when asked); 1 otherwise. A run that fails part-way through its
+// writes removes the outputs it had newly made.
 #include <string>
 
 namespace CLI {

@@ -1,11 +1,16 @@
 #include "cli/plan_command.h"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <iterator>
+#include <vector>
 
+#include "cli/option_checks.h"
 #include "cli/plan_load.h"
 #include "cli/plan_outputs.h"
+#include "cli/run_outputs.h"
 #include "strata/core/error.h"
 #include "strata/plan/collision_checker.h"
 #include "strata/plan/planner_factory.h"
@@ -13,14 +18,29 @@
 namespace strata::apps {
 namespace {
 
-int runChecked(const PlanOptions& o) {
+const char* const kPlanners[] = {"grid", "topo", "rrt"};
+const std::vector<std::string> kPlanFiles = {"path.csv", "report.json", "path.png"};
+
+/// The options, checked before any file is read: InputError naming the option and what it accepts.
+PlanReport checkedRequest(const PlanOptions& o) {
+  if (o.map_path.empty()) throw InputError("a map file (.strata) is required");
   if (o.out_dir.empty()) throw InputError("--out DIR is required");
+  if (std::find(std::begin(kPlanners), std::end(kPlanners), o.planner) == std::end(kPlanners)) {
+    throw InputError("--planner: unknown planner '" + o.planner + "' (choose grid, topo or rrt)");
+  }
   PlanReport report;
   report.planner = o.planner;
   report.request.start_W = parsePoint("--from", o.from);
   report.request.goal_W = parsePoint("--to", o.to);
   report.request.radius_m = o.radius_m;
   report.request.unknown = parseUnknownPolicy(o.unknown);
+  checkRadius(o.radius_m, o.esdf_max_distance_m);
+  return report;
+}
+
+int runChecked(const PlanOptions& o) {
+  PlanReport report = checkedRequest(o);
+  checkMapOutputs(o.map_path, o.out_dir, kPlanFiles);
   const LoadedEsdf loaded = loadEsdf(o.map_path, o.esdf_max_distance_m, o.device);
   const EsdfMap& esdf = *loaded.esdf;
   plan::HostCollisionChecker checker(esdf);
@@ -36,11 +56,15 @@ int runChecked(const PlanOptions& o) {
   report.build_ms = plan::plannerBuildMs(*planner);
   report.result = planner->plan(report.request);
   report.memory_bytes = planner->memoryBytes();
+  // A failed write leaves none of the files (nor the folder when this run made it).
+  OutputCleanup cleanup;
+  cleanup.folder(o.out_dir, kPlanFiles);
   std::filesystem::create_directories(o.out_dir);
   const std::filesystem::path dir(o.out_dir);
   writePathCsv((dir / "path.csv").string(), report.result.path_W);
   writePlanReport((dir / "report.json").string(), report);
   writePathPng((dir / "path.png").string(), esdf, report);
+  cleanup.keep();
   const plan::PlanResult& r = report.result;
   if (r.success) {
     std::printf(
@@ -63,13 +87,18 @@ CLI::App* addPlanCommand(CLI::App& app, PlanOptions& o) {
   cmd->add_option("--from", o.from, "Start x,y,z (metres, world frame)")->required();
   cmd->add_option("--to", o.to, "Goal x,y,z (metres, world frame)")->required();
   cmd->add_option("--planner", o.planner, "grid (A*), topo (topological map) or rrt (RRT*)")
-      ->capture_default_str();
-  cmd->add_option("--radius", o.radius_m, "Robot radius, metres")->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::IsMember({"grid", "topo", "rrt"}));
+  cmd->add_option("--radius", o.radius_m, "Robot radius, metres (>= 0)")
+      ->capture_default_str()
+      ->check(finiteNumber());
   cmd->add_option("--unknown", o.unknown, "Unknown space: occupied (safe) or free")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::IsMember({"occupied", "free"}));
   cmd->add_option("--esdf-max-distance", o.esdf_max_distance_m,
                   "ESDF maximum distance, metres (above the radius)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(finiteNumber());
   cmd->add_option("--out", o.out_dir, "Output folder")->required();
   cmd->add_option("--device", o.device,
                   "Vulkan device index or name substring (env STRATA_DEVICE)");

@@ -3,6 +3,8 @@
 // [--unknown occupied|free] [--esdf-max-distance 2.0] --out DIR`: load a saved map, compute its
 // ESDF, plan a path for a spherical robot, write DIR/path.csv (x,y,z per waypoint, metres, world
 // frame), DIR/report.json and DIR/path.png (the path over the ESDF slice at its mean height).
+// Options and the outputs against the map are checked before the map is read, the map on the
+// host before the device is opened; a failed write leaves none of the files.
 #include <string>
 
 namespace CLI {

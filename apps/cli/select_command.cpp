@@ -2,14 +2,20 @@
 
 #include <CLI/CLI.hpp>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <sstream>
+#include <vector>
 
 #include "strata/core/progress.h"
 #include "cli/select_outputs.h"
+#include "cli/option_checks.h"
+#include "cli/run_outputs.h"
 #include "cli/select_plot.h"
 #include "strata/core/error.h"
+#include "strata/core/output_paths.h"
 #include "strata/io/open_dataset.h"
 #include "strata/mapper/mapper.h"
 #include "strata/map/map_file.h"
@@ -92,9 +98,61 @@ std::string summary(const SelectOptions& o, const Scored& scored,
   return out.str();
 }
 
+const std::vector<std::string> kFiles = {"keyframes.csv", "selection.png", "selected.png"};
+constexpr int kMaxStridePx = 4096;
+
+/// Every option, before any file is read: InputError naming the option and what it accepts.
+void checkOptions(const SelectOptions& o) {
+  if (o.map_path.empty()) throw InputError("a map file (.strata) is required");
+  if (o.session_dir.empty()) throw InputError("a session folder is required");
+  if (o.out_dir.empty()) throw InputError("--out DIR must not be empty");
+  if (o.method != "reproj" && o.method != "ncc" && o.method != "hist") {
+    throw InputError("--method: unknown method '" + o.method + "' (choose reproj, ncc or hist)");
+  }
+  requireCount(o.stride_px, "--stride", 1, kMaxStridePx);
+  if (o.window < 1 || o.window % 2 == 0) {
+    throw InputError("--window (the smoothing_window) must be odd and >= 1, not " +
+                     std::to_string(o.window));
+  }
+  requireCount(o.dilation, "--dilation", 0, std::numeric_limits<int>::max());
+  requireCount(o.frames, "--frames", 0, std::numeric_limits<int>::max());
+  for (const auto& [option, value] :
+       {std::pair{"--coverage-threshold", o.coverage_threshold},
+        std::pair{"--change-threshold", o.change_threshold},
+        std::pair{"--depth-threshold", o.depth_threshold_m},
+        std::pair{"--surface-threshold", o.surface_threshold},
+        std::pair{"--ncc-threshold", o.ncc_threshold},
+        std::pair{"--hist-threshold", o.hist_threshold}}) {
+    if (!std::isfinite(value)) {
+      throw InputError(std::string(option) + " must be a finite number, not " +
+                       std::to_string(value));
+    }
+  }
+}
+
+/// The map and the sessions against --out and its files, before anything is read or made.
+void checkPaths(const SelectOptions& o) {
+  for (const auto& [what, dir] : {std::pair{"session folder", o.session_dir},
+                                  std::pair{"--calibrate: session folder", o.calibrate_dir}}) {
+    if (!dir.empty() && !std::filesystem::is_directory(dir)) {
+      throw InputError(std::string(what) + " '" + dir + "' " +
+                       (std::filesystem::exists(dir) ? "is a file, not a folder"
+                                                     : "does not exist"));
+    }
+  }
+  OutputPaths paths;
+  paths.inputFile(o.map_path, "the map");
+  paths.inputFolder(o.session_dir, "the session");
+  paths.inputFolder(o.calibrate_dir, "--calibrate");
+  outputFolderFiles(paths, o.out_dir, "--out", kFiles);
+  paths.check();
+}
+
 int runChecked(const SelectOptions& o) {
   const auto start = Clock::now();
+  checkOptions(o);
   selection::SelectionConfig config = selectionConfig(o);
+  checkPaths(o);
   const TsdfMap host_map = loadMap(o.map_path);
   const std::unique_ptr<Dataset> session = openDataset(o.session_dir);
   std::unique_ptr<Dataset> calibration;
@@ -115,10 +173,14 @@ int runChecked(const SelectOptions& o) {
   }
   const Scored scored = scoreDataset(*mapper, *session, o.frames, "score keyframes", o.quiet);
   const selection::TrajectorySelection s = selection::selectKeyframes(scoresOf(scored), config);
+  // A failed write leaves none of the files (nor the folder when this run made it).
+  OutputCleanup cleanup;
+  cleanup.folder(o.out_dir, kFiles);
   std::filesystem::create_directories(o.out_dir);
   writeSelectionCsv((std::filesystem::path(o.out_dir) / "keyframes.csv").string(), scored.keyframes,
                     s);
   const auto files = writeSelectionPictures(o.out_dir, scored.keyframes, s, config);
+  cleanup.keep();
   const double wall_s = std::chrono::duration<double>(Clock::now() - start).count();
   std::printf("%s\n", summary(o, scored, s, config, files, wall_s).c_str());
   return 0;
@@ -133,28 +195,43 @@ CLI::App* addSelectCommand(CLI::App& app, SelectOptions& o) {
   c->add_option("session", o.session_dir, "Session folder (TUM RGB-D or 7-Scenes layout)")
       ->required();
   c->add_option("--out", o.out_dir, "Output folder")->capture_default_str();
-  c->add_option("--method", o.method, "reproj (raycast reprojection) | ncc | hist")->capture_default_str();
+  c->add_option("--method", o.method, "reproj (raycast reprojection) | ncc | hist")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"reproj", "ncc", "hist"}));
   c->add_option("--calibrate", o.calibrate_dir,
                 "Session the map was built from: automatic thresholds from its own frames");
-  c->add_option("--stride", o.stride_px, "Sample every n-th pixel")->capture_default_str();
+  c->add_option("--stride", o.stride_px, "Sample every n-th pixel")
+      ->capture_default_str()
+      ->check(CLI::Range(1, kMaxStridePx));
   c->add_option("--window", o.window, "Moving-average window, keyframes (odd)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::Range(1, std::numeric_limits<int>::max()));
   c->add_option("--dilation", o.dilation, "Keyframes added on each side of a selected one")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::Range(0, std::numeric_limits<int>::max()));
   c->add_option("--coverage-threshold", o.coverage_threshold, "Select below this coverage")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(finiteNumber());
   c->add_option("--change-threshold", o.change_threshold, "Select above this colour change")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(finiteNumber());
   c->add_option("--depth-threshold", o.depth_threshold_m,
                 "Select above this depth change, metres (negative: unused)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(finiteNumber());
   c->add_option("--surface-threshold", o.surface_threshold,
                 "Select above this share of measured samples the map does not hold (negative: "
                 "unused; kept under --calibrate)")
-      ->capture_default_str();
-  c->add_option("--ncc-threshold", o.ncc_threshold, "ncc: select below")->capture_default_str();
-  c->add_option("--hist-threshold", o.hist_threshold, "hist: select below")->capture_default_str();
-  c->add_option("--frames", o.frames, "Score only the first n frames (0: all)");
+      ->capture_default_str()
+      ->check(finiteNumber());
+  c->add_option("--ncc-threshold", o.ncc_threshold, "ncc: select below")
+      ->capture_default_str()
+      ->check(finiteNumber());
+  c->add_option("--hist-threshold", o.hist_threshold, "hist: select below")
+      ->capture_default_str()
+      ->check(finiteNumber());
+  c->add_option("--frames", o.frames, "Score only the first n frames (0: all)")
+      ->check(CLI::Range(0, std::numeric_limits<int>::max()));
   c->add_option("--device", o.device, "Vulkan device index or name substring");
   c->add_flag("--quiet", o.quiet, "No progress bar");
   return c;

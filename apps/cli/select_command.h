@@ -3,7 +3,8 @@
 // Renders the map into every frame of the session on a sparse pixel grid (device), scores coverage,
 // change and depth change (or a baseline similarity), smooths them along the trajectory, selects
 // the keyframes worth reconstructing and writes keyframes.csv, selection.png (metrics, thresholds,
-// selected frames) and selected.png (contact sheet of the selected images).
+// selected frames) and selected.png (contact sheet of the selected images). Options and paths are
+// checked before the map is read; a failed write leaves none of the files.
 #include <string>
 
 namespace CLI {

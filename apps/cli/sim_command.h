@@ -3,6 +3,10 @@
 // RGB-D layout, with the ground truth (meshes, object poses, changes) and IMU in the EuRoC layout;
 // with --stereo also a grey stereo camera + IMU + body ground truth in the EuRoC/ASL layout (mav0/,
 // sim/session/stereo_recording.h).
+// The options are checked before the world file is read, and --out (a writable folder or a new
+// one in a writable folder, not the world file) before anything is written; a run that fails
+// while writing removes what it made (a new --out, or its new ground_truth/ and session folders).
+// Exit 0 on success, 2 on bad input (named), 1 on other errors.
 #include <cstdint>
 #include <string>
 

@@ -3,7 +3,8 @@
 // [--slice-z Z]`: load a saved map, compute its ESDF, build the topological map
 // (plan/topo_map.h) and write DIR/topo.json (clusters with their boxes, portals, edges, build
 // time, memory against a grid's) and DIR/topo.png (the clusters seen from above at one height,
-// each in its own colour, portals marked).
+// each in its own colour, portals marked). Options and the outputs against the map are checked
+// before the map is read; a failed write leaves none of the files.
 #include <cmath>
 #include <string>
 

@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "strata/core/error.h"
+#include "strata/core/output_paths.h"
 
 namespace strata::apps {
 
@@ -32,6 +33,12 @@ void MapperOptions::validate() const {
   }
   if (queue_capacity == 0) throw InputError("--queue must be at least 1 frame");
   if (!std::isfinite(esdf_slice_z_m)) throw InputError("--slice-z must be finite");
+  // The map and the object database are saved at the end of a session (and on SAVE_MAP): where
+  // they would go is checked now, not after a whole session of mapping.
+  OutputPaths paths;
+  paths.outputFile(map_path, "--map");
+  paths.outputFile(objectsFile(), "--objects");
+  paths.check();
 }
 
 void addMapperOptions(CLI::App& app, MapperOptions& o) {

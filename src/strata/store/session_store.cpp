@@ -46,15 +46,20 @@ const std::string kSessionColumns =
 
 Store::Store(const std::string& path, const StoreOptions& options) {
   const fs::path file(path);
-  if (!options.create && !fs::exists(file)) {
+  if ((!options.create || options.read_only) && !fs::exists(file)) {
     throw InputError("map database '" + path + "' does not exist");
   }
+  if (fs::is_directory(file)) throw InputError("map database '" + path + "' is a folder");
   const fs::path parent = fs::absolute(file).parent_path();
   if (!fs::is_directory(parent)) {
     throw InputError("map database '" + path + "': folder '" + parent.string() +
                      "' does not exist");
   }
   folder_ = parent.lexically_normal().string();
+  if (options.read_only) {
+    openReadOnly(path);
+    return;
+  }
   db_ = std::make_unique<Database>(path, options.create);
   // NOTE: checked before the first write (switching to WAL rewrites the header), so a file that
   // is not SQLite, is newer or belongs to another application is left exactly as it was.
@@ -68,6 +73,23 @@ Store::Store(const std::string& path, const StoreOptions& options) {
     const std::int64_t pages = std::max<std::int64_t>(1, options.max_database_bytes / page_bytes);
     db_->queryInt("PRAGMA max_page_count = " + std::to_string(pages), "limit the size");
   }
+}
+
+void Store::openReadOnly(const std::string& path) {
+  db_ = std::make_unique<Database>(path, /*create=*/false, /*read_only=*/true);
+  checkSchema(*db_);
+  const std::int64_t version = db_->queryInt("PRAGMA user_version", "read the schema version");
+  if (version == 0) {
+    throw InputError("map database '" + path + "' is empty, not a Strata map");
+  }
+  if (version < kSchemaVersion) {
+    throw InputError("map database '" + path + "' has schema version " + std::to_string(version) +
+                     ", older than " + std::to_string(kSchemaVersion) +
+                     ": it is only read here; a command that writes it (map import, align --db) "
+                     "migrates it");
+  }
+  db_->exec("PRAGMA foreign_keys = ON", "set the foreign-key check");
+  quickCheck(*db_);
 }
 
 Store::~Store() = default;

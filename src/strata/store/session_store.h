@@ -29,6 +29,11 @@ struct StoreOptions {
   /// Upper bound on the database file's size, 0 = none. Writes that would pass it fail as a full
   /// disk does (SQLITE_FULL), which also makes that path testable.
   std::int64_t max_database_bytes = 0;
+  /// Open for reading only (what `map info` and `map export` do): the file is never changed (no
+  /// creation, journal switch or migration). A missing or empty file, a file that is not a Strata
+  /// map and one of an older schema (which would need migrating) are InputErrors; every write
+  /// throws Error. `create` is ignored.
+  bool read_only = false;
 };
 
 /// The object database's copy in the map (objects/object_database_file.h writes and reads it).
@@ -109,6 +114,7 @@ class Store {
   std::vector<SessionSummary> summary();
 
  private:
+  void openReadOnly(const std::string& path);
   SessionRecord sessionFrom(const Statement& row) const;
   void requireSession(std::int64_t session_id, const std::string& what);
 

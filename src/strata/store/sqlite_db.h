@@ -15,9 +15,10 @@ namespace strata::store {
 
 class Database {
  public:
-  /// Opens (create = true: creates when absent) the SQLite file at `path`. The folder of a file
-  /// to create must exist. Error naming the path and SQLite's message when it cannot.
-  Database(const std::string& path, bool create);
+  /// Opens (create = true: creates when absent; read_only: for reading only, never creating) the
+  /// SQLite file at `path`. The folder of a file to create must exist. InputError naming the path
+  /// and SQLite's message when it cannot.
+  Database(const std::string& path, bool create, bool read_only = false);
   ~Database();
   Database(const Database&) = delete;
   Database& operator=(const Database&) = delete;

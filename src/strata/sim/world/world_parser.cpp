@@ -14,15 +14,36 @@ const Material kFloor{{150, 140, 125}, 0.0f};
 const Material kWalls{{215, 212, 200}, 0.0f};
 const Material kCeiling{{235, 235, 235}, 0.0f};
 
+std::string coordinateLimit() {
+  return "every coordinate must be within " +
+         std::to_string(static_cast<int>(kMaxWorldCoordinateM)) +
+         " m of the origin (kMaxWorldCoordinateM)";
+}
+
 RoomSpec parseRoom(const YamlField& field, int index) {
   field.allowKeys({"name", "min", "max", "height", "floor", "walls", "ceiling"});
   RoomSpec room;
   room.name = field.has("name") ? field.get("name").text() : "room_" + std::to_string(index);
-  room.min_m = field.get("min").vec2();
+  const YamlField min = field.get("min");
+  room.min_m = min.vec2();
   const YamlField max = field.get("max");
   room.max_m = max.vec2();
+  const auto within = [](const Eigen::Vector2d& p) {
+    return p.cwiseAbs().maxCoeff() <= kMaxWorldCoordinateM;
+  };
+  if (!within(room.min_m)) min.fail(coordinateLimit());
+  if (!within(room.max_m)) max.fail(coordinateLimit());
   if ((room.max_m.array() <= room.min_m.array()).any()) max.fail("must exceed min in x and y");
-  room.height_m = field.get("height").positive();
+  if ((room.max_m - room.min_m).maxCoeff() > kMaxRoomSideM) {
+    max.fail("a room side may be at most " + std::to_string(static_cast<int>(kMaxRoomSideM)) +
+             " m (kMaxRoomSideM)");
+  }
+  const YamlField height = field.get("height");
+  room.height_m = height.positive();
+  if (room.height_m > kMaxRoomHeightM) {
+    height.fail("may be at most " + std::to_string(static_cast<int>(kMaxRoomHeightM)) +
+                " m (kMaxRoomHeightM)");
+  }
   room.floor = field.has("floor") ? parseMaterial(field.get("floor"), kFloor) : kFloor;
   room.walls = field.has("walls") ? parseMaterial(field.get("walls"), kWalls) : kWalls;
   room.ceiling = field.has("ceiling") ? parseMaterial(field.get("ceiling"), kCeiling) : kCeiling;

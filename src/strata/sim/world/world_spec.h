@@ -53,6 +53,15 @@ struct DoorSpec {
 };
 
 /// A room: interior floor rectangle [min_m, max_m] (x, y), walls outside it.
+/// Limits of a world file, checked as it is parsed, before any geometry or grid is built: a room
+/// (and so the world's maps, truth grids and paths) stays within sizes the simulator, the maps and
+/// the exploration truth can hold (a 200 m room at a 5 cm voxel is 3.2e7 cells per metre of
+/// height). The shipped worlds are at most 40 m across and 6 m high.
+inline constexpr double kMaxRoomSideM = 200.0;
+inline constexpr double kMaxRoomHeightM = 50.0;
+/// Every coordinate of a room's corners and an object's position, metres from the origin.
+inline constexpr double kMaxWorldCoordinateM = 1000.0;
+
 struct RoomSpec {
   std::string name;
   Eigen::Vector2d min_m = Eigen::Vector2d::Zero();

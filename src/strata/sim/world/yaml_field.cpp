@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 
 #include "strata/core/error.h"
 
@@ -82,6 +83,7 @@ std::optional<YamlField> YamlField::find(const std::string& key) const {
 
 void YamlField::allowKeys(const std::vector<std::string>& allowed) const {
   expectMap();
+  std::set<std::string> seen;
   for (const auto& entry : node_) {
     // NOTE: YAML allows any node as a key ({[4, 3]: 1}); ours are names, so refuse the rest here
     // rather than let as<std::string>() throw a YAML exception past the parser.
@@ -89,6 +91,9 @@ void YamlField::allowKeys(const std::vector<std::string>& allowed) const {
       child(entry.first, path_).fail("a key must be text, got " + describe(entry.first));
     }
     const std::string key = entry.first.Scalar();
+    // NOTE: YAML forbids a key twice in one map but yaml-cpp keeps both and reads the first, so a
+    // second value would be silently ignored.
+    if (!seen.insert(key).second) child(entry.first, childPath(key)).fail("given twice");
     if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
     std::string hint;
     std::size_t best = 3;  // suggest only close matches (typos)
