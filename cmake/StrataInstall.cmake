@@ -23,7 +23,7 @@ set(strata_component_mapper strata_shaders strata_core strata_vk strata_map stra
     strata_track strata_mapper)
 set(strata_headers_mapper core vk map integrate raycast esdf mesh occupancy change select track
     mapper)
-set(strata_component_io strata_io strata_all)
+set(strata_component_io strata_io)
 set(strata_component_trajectory strata_trajectory)
 set(strata_component_store strata_store)
 set(strata_component_align strata_align)
@@ -38,7 +38,10 @@ set(strata_component_explore strata_explore)
 set(strata_component_lcm strata_lcm_types strata_lcm strata_lcm_objects)
 set(strata_all_components mapper io trajectory store align odometry sim eval objects plan explore
     lcm)
-if(NOT STRATA_BUILD_IO)
+# strata::strata belongs with the dataset readers where they are built, else with the Mapper.
+if(STRATA_BUILD_IO)
+  list(APPEND strata_component_io strata_all)
+else()
   list(APPEND strata_component_mapper strata_all)
 endif()
 
