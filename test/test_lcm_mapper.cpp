@@ -127,6 +127,30 @@ TEST(LcmMapper, BackpressureDropsTheOldestFramesAndKeepsTheNewest) {
   }
 }
 
+TEST(LcmMapper, SavesTheMapOnItsTimerWhileFusing) {
+  constexpr int kFrames = 4;
+  const fs::path dir = freshTempDir("lcm_timed_save");
+  apps::MapperOptions options = testMapperOptions();
+  options.map_path = (dir / "timed.strata").string();
+  options.save_every_s = 0.05;
+  InProcessMapper mapper(options);
+  apps::FramePublisher publisher = publisherFor(mapper, "depth16");
+  const auto session = roomSession(0, kFrames);
+  const std::int64_t t0 = lcm_io::nowUtime();
+  for (int i = 0; i < kFrames; ++i) {
+    publisher.publish(session->load(i), session->intrinsics(), t0 + 33000 * i);
+    waitForFused(mapper, i + 1);
+    // A save is due once the interval has passed and a frame was fused since the last one.
+    std::this_thread::sleep_for(std::chrono::milliseconds(80));
+  }
+  EXPECT_TRUE(InProcessMapper::waitFor([&] { return fs::exists(options.map_path); }, 30.0))
+      << "no timed save while the node ran (it was not stopped yet)";
+  const TsdfMap saved = loadMap(options.map_path);
+  EXPECT_GT(saved.blockCount(), 0u);
+  mapper.stop();
+  fs::remove_all(dir);
+}
+
 TEST(LcmMapper, CommandsSaveRequestTheMeshAndReportFailuresWithoutStopping) {
   const fs::path dir = freshTempDir("lcm_commands");
   InProcessMapper mapper(testMapperOptions());

@@ -59,6 +59,9 @@ class MapperNode {
   void runCommands(bool all = false);
   void runCommand(const command_t& command);
   void publishDue(bool frame_fused);
+  /// Saves the map to --map when --save-every has passed since the last save and frames were
+  /// fused since (failures are logged; the map and the previous file stay intact).
+  void saveDue(double now_s);
   void publishStats();
   void publishMesh(bool full);
   void publishEsdf();
@@ -88,7 +91,8 @@ class MapperNode {
   std::string last_command_result_;
 
   // Worker thread only.
-  double next_stats_s_ = 0.0, next_mesh_s_ = 0.0, next_esdf_s_ = 0.0;
+  double next_stats_s_ = 0.0, next_mesh_s_ = 0.0, next_esdf_s_ = 0.0, next_save_s_ = 0.0;
+  std::int64_t frames_at_last_save_ = 0;
 };
 
 /// Commands waiting beyond this are refused (counted as bad on the command channel).

@@ -100,6 +100,26 @@ void MapperNode::publishDue(bool frame_fused) {
     publishStats();
     next_stats_s_ = nextDue(now_s, options_.stats_rate_hz);
   }
+  saveDue(now_s);
+}
+
+void MapperNode::saveDue(double now_s) {
+  if (options_.save_every_s <= 0.0 || options_.map_path.empty()) return;
+  if (next_save_s_ == 0.0) next_save_s_ = now_s + options_.save_every_s;  // the first interval
+  if (now_s < next_save_s_ || core_.framesFused() == frames_at_last_save_) return;
+  next_save_s_ = now_s + options_.save_every_s;
+  try {
+    core_.saveMap(options_.map_path);
+    frames_at_last_save_ = core_.framesFused();
+    if (!options_.quiet) {
+      log("saved the map (" + std::to_string(frames_at_last_save_) + " frames, every " +
+          std::to_string(options_.save_every_s) + " s) to " + options_.map_path);
+    }
+  } catch (const std::exception& e) {
+    // NOTE: the map in memory is intact and the previous file too (saves are atomic): keep
+    // mapping and try again at the next interval.
+    log("could not save the map to " + options_.map_path + ": " + e.what());
+  }
 }
 
 void MapperNode::runCommands(bool all) {

@@ -33,6 +33,9 @@ void MapperOptions::validate() const {
   }
   if (queue_capacity == 0) throw InputError("--queue must be at least 1 frame");
   if (!std::isfinite(esdf_slice_z_m)) throw InputError("--slice-z must be finite");
+  if (!std::isfinite(save_every_s) || save_every_s < 0.0) {
+    throw InputError("--save-every must be a finite number of seconds >= 0 (0: no timed saves)");
+  }
   // The map and the object database are saved at the end of a session (and on SAVE_MAP): where
   // they would go is checked now, not after a whole session of mapping.
   OutputPaths paths;
@@ -63,6 +66,10 @@ void addMapperOptions(CLI::App& app, MapperOptions& o) {
   app.add_option("--slice-z", o.esdf_slice_z_m, "Height of the ESDF slice, metres")
       ->capture_default_str();
   app.add_option("--stats-rate", o.stats_rate_hz, "Least map_stats_t messages per second")
+      ->capture_default_str();
+  app.add_option("--save-every", o.save_every_s,
+                 "Save the map to --map every this many seconds while fusing (0: only on "
+                 "SAVE_MAP and on exit)")
       ->capture_default_str();
   app.add_option("--queue", o.queue_capacity, "Frames waiting to be fused (oldest dropped)")
       ->capture_default_str();

@@ -34,8 +34,12 @@ struct MapperOptions {
   /// Map settings; the voxel default is 5 cm (a live map on a CPU device keeps up at that size).
   MapConfig map = defaultMapperMapConfig();
   /// Loaded at start when it exists (the mapper resumes it; a corrupt file is refused, untouched);
-  /// written atomically on SAVE_MAP without a path and on SIGINT/SIGTERM; "" = neither.
+  /// written atomically on SAVE_MAP without a path, every save_every_s and on SIGINT/SIGTERM;
+  /// "" = none of these.
   std::string map_path = "strata_map.strata";
+  /// Seconds between saves of the map to map_path while frames are being fused (a kill loses at
+  /// most this much); 0: only on SAVE_MAP and on exit.
+  double save_every_s = 60.0;
   /// Mesh updates of changed blocks per second; <= 0: after every fused frame (lowest latency).
   double mesh_rate_hz = 2.0;
   /// ESDF slices per second (the ESDF is updated incrementally then); 0: no ESDF.
