@@ -31,6 +31,7 @@
 #include "plan_room_scene.h"
 #include "strata/map/map_file.h"
 #include "strata/store/session_store.h"
+#include "cli_sweep.h"
 #include "test_utils.h"
 
 namespace strata {
@@ -40,25 +41,11 @@ namespace fs = std::filesystem;
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-/// One bad run: what it is, the run (a command's runX on its options), the exit code, words the
-/// message must hold, inputs that must be byte for byte unchanged, outputs that must not exist.
-struct Row {
-  std::string what;
-  std::function<int()> run;
-  int code = 2;
-  std::vector<std::string> words;
-  std::vector<fs::path> unchanged;
-  std::vector<fs::path> absent;
-};
+using Row = test::SweepRow;
 
 template <typename Options>
 std::function<int()> call(int (*run)(const Options&), const Options& options) {
   return [run, options] { return run(options); };
-}
-
-std::string bytesOf(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
 class CliSweepMaps : public ::testing::Test {
@@ -111,38 +98,9 @@ class CliSweepMaps : public ::testing::Test {
     std::ofstream(path(name), std::ios::binary) << text;
   }
 
-  /// Runs every row, checking its exit code, message, inputs and outputs; returns the row count.
+  /// Runs every row (test/cli_sweep.h); returns the row count.
   std::size_t sweep(const std::string& command, const std::vector<Row>& rows) {
-    for (const Row& row : rows) {
-      const std::string label = command + ": " + row.what;
-      std::map<fs::path, std::string> before;
-      for (const fs::path& p : row.unchanged) {
-        EXPECT_TRUE(fs::is_regular_file(p)) << label << ": the input " << p << " is missing";
-        before[p] = bytesOf(p);
-      }
-      for (const fs::path& p : row.absent) {
-        EXPECT_FALSE(fs::exists(p)) << label << ": " << p << " exists before the run";
-      }
-      testing::internal::CaptureStdout();
-      testing::internal::CaptureStderr();
-      const int code = row.run();
-      const std::string out = testing::internal::GetCapturedStdout();
-      const std::string err = testing::internal::GetCapturedStderr();
-      const std::string message = out + err;
-      EXPECT_EQ(code, row.code) << label << "\n" << message;
-      for (const std::string& word : row.words) {
-        EXPECT_NE(message.find(word), std::string::npos)
-            << label << ": the message does not hold '" << word << "':\n" << message;
-      }
-      for (const fs::path& p : row.unchanged) {
-        EXPECT_TRUE(bytesOf(p) == before[p]) << label << ": " << p << " changed";
-      }
-      for (const fs::path& p : row.absent) {
-        EXPECT_FALSE(fs::exists(p)) << label << ": " << p << " was left behind";
-      }
-    }
-    std::printf("strata %s: %zu bad runs swept\n", command.c_str(), rows.size());
-    return rows.size();
+    return test::sweepRows(command, rows, dir_);
   }
 
   fs::path dir_;

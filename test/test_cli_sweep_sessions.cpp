@@ -33,6 +33,7 @@
 #include "cli/sim_command.h"
 #include "strata/core/types.h"
 #include "strata/io/image_io.h"
+#include "cli_sweep.h"
 #include "test_utils.h"
 
 namespace strata {
@@ -40,56 +41,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// Bad input must be refused before the work: well under this (a sanitizer build included).
-constexpr double kMaxRowSeconds = 10.0;
-
-struct Row {
-  std::string description;
-  std::function<int()> run;  // the command with the row's options
-  int exit_code = 2;
-  std::vector<std::string> words;       // in the message (stderr)
-  std::vector<fs::path> unchanged;      // inputs (files or folders): byte for byte as before
-  std::vector<fs::path> absent;         // outputs: must not exist afterwards
-  bool needs_read_only_folder = false;  // skipped where a 0555 folder is writable (root)
-};
-
-/// Every file (its bytes) and folder under `root`, by path.
-std::map<std::string, std::string> snapshot(const fs::path& root) {
-  std::map<std::string, std::string> entries;
-  if (fs::is_regular_file(root)) {
-    entries[root.string()] = test::readText(root);
-    return entries;
-  }
-  if (!fs::is_directory(root)) return entries;
-  for (const fs::directory_entry& e : fs::recursive_directory_iterator(root)) {
-    if (e.is_directory()) {
-      entries[e.path().string()] = "<folder>";
-    } else if (e.is_regular_file()) {
-      entries[e.path().string()] = test::readText(e.path());
-    } else {
-      entries[e.path().string()] = "<other>";
-    }
-  }
-  return entries;
-}
-
-/// The paths added, removed or changed between two snapshots ("" when none).
-std::string differences(const std::map<std::string, std::string>& before,
-                        const std::map<std::string, std::string>& after) {
-  std::ostringstream s;
-  for (const auto& [path, bytes] : before) {
-    const auto it = after.find(path);
-    if (it == after.end()) {
-      s << " removed " << path << ";";
-    } else if (it->second != bytes) {
-      s << " changed " << path << ";";
-    }
-  }
-  for (const auto& [path, bytes] : after) {
-    if (before.count(path) == 0) s << " added " << path << ";";
-  }
-  return s.str();
-}
+using Row = test::SweepRow;
 
 void writeText(const fs::path& path, const std::string& text) {
   fs::create_directories(path.parent_path());
@@ -152,42 +104,8 @@ class CliSweep : public ::testing::Test {
   fs::path path(const std::string& name) const { return dir_ / name; }
   std::string str(const std::string& name) const { return path(name).string(); }
 
-  /// Whether a 0555 folder refuses writes here (not as root).
-  bool readOnlyFolderWorks() const { return ::access(path("readonly").c_str(), W_OK) != 0; }
-
   void sweep(const std::vector<Row>& rows) {
-    for (const Row& row : rows) {
-      SCOPED_TRACE(row.description);
-      if (row.needs_read_only_folder && !readOnlyFolderWorks()) {
-        std::printf("[ skipped  ] %s (a read-only folder is writable here)\n",
-                    row.description.c_str());
-        continue;
-      }
-      std::map<std::string, std::map<std::string, std::string>> inputs;
-      for (const fs::path& p : row.unchanged) {
-        ASSERT_TRUE(fs::exists(p)) << "the row's input " << p << " must exist";
-        inputs[p.string()] = snapshot(p);
-      }
-      const auto whole = snapshot(dir_);
-      testing::internal::CaptureStdout();
-      testing::internal::CaptureStderr();
-      const auto start = std::chrono::steady_clock::now();
-      const int code = row.run();
-      const double seconds =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      const std::string out = testing::internal::GetCapturedStdout();
-      const std::string err = testing::internal::GetCapturedStderr();
-      EXPECT_EQ(code, row.exit_code) << "stderr: " << err << "\nstdout: " << out;
-      for (const std::string& word : row.words) {
-        EXPECT_NE(err.find(word), std::string::npos) << "'" << word << "' is not in: " << err;
-      }
-      for (const fs::path& p : row.unchanged) {
-        EXPECT_EQ(differences(inputs[p.string()], snapshot(p)), "") << "input " << p;
-      }
-      for (const fs::path& p : row.absent) EXPECT_FALSE(fs::exists(p)) << "output " << p;
-      EXPECT_EQ(differences(whole, snapshot(dir_)), "") << "the run left files behind";
-      EXPECT_LT(seconds, kMaxRowSeconds) << "bad input must be refused before the work";
-    }
+    test::sweepRows("session commands", rows, dir_);
   }
 
   // The commands with the fixture's defaults, edited by a row.
