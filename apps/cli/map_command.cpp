@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "cli/map_info.h"
+#include "cli/run_outputs.h"
 #include "strata/core/progress.h"
 #include "strata/core/error.h"
 #include "strata/core/output_paths.h"
@@ -14,14 +15,6 @@
 namespace strata::apps {
 
 namespace {
-
-/// Removes a database file this run created (with SQLite's journal files) after a failure, so a
-/// failed first import leaves no empty map behind.
-void removeCreatedDatabase(const std::string& path) {
-  std::error_code ignored;
-  for (const char* suffix : {"", "-wal", "-shm", "-journal"})
-    std::filesystem::remove(path + suffix, ignored);
-}
 
 int importInto(const MapOptions& o, const store::ImportOptions& options) {
   store::Store db(o.db_path);
@@ -60,13 +53,12 @@ int runImport(const MapOptions& o) {
   store::ImportOptions options;
   options.keyframe_every = o.keyframe_every;
   options.keyframe_distance_m = o.keyframe_distance_m;
-  const bool existed = std::filesystem::exists(o.db_path);
-  try {
-    return importInto(o, options);
-  } catch (...) {
-    if (!existed) removeCreatedDatabase(o.db_path);
-    throw;
-  }
+  // A failed first import leaves no database behind (nor SQLite's journal files).
+  OutputCleanup cleanup;
+  for (const char* suffix : {"", "-wal", "-shm", "-journal"}) cleanup.file(o.db_path + suffix);
+  const int code = importInto(o, options);
+  cleanup.keep();
+  return code;
 }
 
 int runInfo(const MapOptions& o) {
