@@ -1,4 +1,5 @@
-// libFuzzer target: map files (deserializeMap), through the fuzz_map_file entry of parser_entries.h.
+// libFuzzer target: map files of both versions (deserializeMapFile), through the fuzz_map_file
+// entry of parser_entries.h.
 #include "parser_entries.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -61,6 +61,14 @@ void writeMapSeeds(const fs::path& out) {
   writeBytes(out / "fuzz_map_file/seed_one_block.strata", bytes.data(), bytes.size());
   const std::vector<std::uint8_t> empty = serializeMap(TsdfMap(MapConfig{}));
   writeBytes(out / "fuzz_map_file/seed_empty.strata", empty.data(), empty.size());
+  // A mapper state with a session open: the record and both layers (format version 2).
+  MapSessionRecord record;
+  record.sessions_ended = 2;
+  record.session_open = true;
+  record.session_frames = 3;
+  record.frames = 40;
+  const std::vector<std::uint8_t> state = serializeMapFile(MapFileContents{map, map, record});
+  writeBytes(out / "fuzz_map_file/seed_mapper_state.strata", state.data(), state.size());
 }
 
 /// An empty database, and one with a model of one block and two instances.

@@ -40,7 +40,7 @@ void mapFile(const std::uint8_t* data, std::size_t size) {
     const std::uint32_t crc = crc32(file.data(), file.size() - 4);
     std::memcpy(file.data() + file.size() - 4, &crc, 4);
   }
-  deserializeMap(file, "fuzz.strata");
+  deserializeMapFile(file, "fuzz.strata");  // both versions: a plain map and a mapper state
 }
 
 /// Object database files (objects/object_database_file.h). NOTE: the header's payload size and

@@ -2,11 +2,13 @@
 // saved map: the end result equals an uninterrupted run over the same frames in the same order.
 // Twice: frames from LCM logs through the file:// provider (a queue that holds them all: no frame
 // dropped, no network), and from strata-play over UDP multicast inside a network namespace of
-// its own, with flow control of one frame in flight.
+// its own, with flow control of one frame in flight. With change detection, over three sessions
+// killed in the middle one: the static map and the sessions' count end as uninterrupted.
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -62,13 +64,24 @@ int stop(pid_t pid, int signal) {
   return WEXITSTATUS(status);
 }
 
-/// A mapper over `log` until the end of it, then SIGTERM: it fuses what is queued and saves.
-MapperSummary runToEnd(const fs::path& log, const fs::path& map, const fs::path& output) {
-  const pid_t pid = spawnMapper(mapperArgs(log, map), output);
+/// A mapper with `args` until the end of its log, then SIGTERM: it fuses what is queued and saves.
+MapperSummary runToEnd(const std::vector<std::string>& args, const fs::path& output) {
+  const pid_t pid = spawnMapper(args, output);
   EXPECT_GT(pid, 0);
   EXPECT_TRUE(waitForLine(output, "stopped delivering")) << readText(output);
   EXPECT_EQ(stop(pid, SIGTERM), 0) << readText(output);
   return parseMapperSummary(readText(output));
+}
+
+/// A mapper with `args` until its first save, then SIGKILL; the file it saved is copied to
+/// `saved` (the resumed run goes on to overwrite it).
+void killAfterSave(const std::vector<std::string>& args, const fs::path& output,
+                   const fs::path& map, const fs::path& saved) {
+  const pid_t pid = spawnMapper(args, output);
+  ASSERT_GT(pid, 0);
+  ASSERT_TRUE(waitForLine(output, "saved the map")) << readText(output);
+  EXPECT_EQ(stop(pid, SIGKILL), -1) << "SIGKILL ends it without its exit save";
+  fs::copy_file(map, saved);
 }
 
 /// The resumed map equals the uninterrupted one voxel for voxel; the map saved before the kill
@@ -97,16 +110,15 @@ TEST(MapperResume, KilledAndRestartedFromItsSavedMapEndsAsAnUninterruptedRun) {
   writePartLog(dir / "first.lcm", 0, kFirstPart, true);
   writePartLog(dir / "rest.lcm", kFirstPart, kFrames, false);
 
-  EXPECT_EQ(runToEnd(dir / "whole.lcm", dir / "whole.strata", dir / "whole.log").fused, kFrames);
+  EXPECT_EQ(
+      runToEnd(mapperArgs(dir / "whole.lcm", dir / "whole.strata"), dir / "whole.log").fused,
+      kFrames);
 
   const fs::path map = dir / "resumed.strata";
-  const pid_t first = spawnMapper(mapperArgs(dir / "first.lcm", map), dir / "first.log");
-  ASSERT_GT(first, 0);
-  ASSERT_TRUE(waitForLine(dir / "first.log", "saved the map")) << readText(dir / "first.log");
-  EXPECT_EQ(stop(first, SIGKILL), -1) << "SIGKILL ends it without its exit save";
-  fs::copy_file(map, dir / "saved.strata");
+  ASSERT_NO_FATAL_FAILURE(killAfterSave(mapperArgs(dir / "first.lcm", map), dir / "first.log", map,
+                                        dir / "saved.strata"));
 
-  const MapperSummary rest = runToEnd(dir / "rest.lcm", map, dir / "rest.log");
+  const MapperSummary rest = runToEnd(mapperArgs(dir / "rest.lcm", map), dir / "rest.log");
   EXPECT_EQ(rest.fused, kFrames - kFirstPart);
   EXPECT_NE(readText(dir / "rest.log").find("resuming from " + map.string()), std::string::npos)
       << readText(dir / "rest.log");
@@ -164,6 +176,80 @@ TEST(MapperResume, ReplayedByStrataPlayKilledAndRestartedEndsAsAnUninterruptedRu
       << logs;
   EXPECT_NE(readText(dir / "rest_mapper.log").find("resuming from"), std::string::npos) << logs;
   expectResumedEqualsWhole(dir / "whole.strata", dir / "saved.strata", dir / "resumed.strata");
+  fs::remove_all(dir);
+}
+
+constexpr int kSessionFrames = 8;  // per session, with change detection
+constexpr int kCutFrame = 4;       // of session 1: fused before the kill
+
+/// Sessions [first_session, end_session) of the room, kSessionFrames each, each closed by
+/// STOP_SESSION; frames of first_session from `first_frame`, and the log cut before frame
+/// `cut_frame` of session `end_session - 1` (-1: no cut) with a SAVE_MAP instead.
+void writeSessionsLog(const fs::path& path, int first_session, int first_frame, int end_session,
+                      int cut_frame) {
+  FrameLogWriter log(path, roomSession(0, kSessionFrames)->intrinsics());
+  double t = 0.0;
+  std::int64_t request = 1;
+  for (int s = first_session; s < end_session; ++s) {
+    const auto session = roomSession(s, kSessionFrames);
+    const bool cut = s == end_session - 1 && cut_frame >= 0;
+    const int begin = s == first_session ? first_frame : 0;
+    const int end = cut ? cut_frame : kSessionFrames;
+    for (int i = begin; i < end; ++i) log.frame(session->load(i), s * kSessionFrames + i, t += 0.05);
+    log.command(cut ? command_t::SAVE_MAP : command_t::STOP_SESSION, request++, t += 0.05);
+  }
+}
+
+TEST(MapperResume, WithChangeDetectionKilledMidSessionEndsAsAnUninterruptedRun) {
+  const fs::path dir = freshTestDir("resume_change");
+  writeSessionsLog(dir / "whole.lcm", 0, 0, 3, -1);
+  writeSessionsLog(dir / "first.lcm", 0, 0, 2, kCutFrame);
+  writeSessionsLog(dir / "rest.lcm", 1, kCutFrame, 3, -1);
+  auto args = [](const fs::path& log, const fs::path& map) {
+    std::vector<std::string> a = mapperArgs(log, map);
+    a.erase(std::find(a.begin(), a.end(), "--no-change"));
+    a.push_back("--no-objects");  // the object database resumes from its own file
+    return a;
+  };
+  EXPECT_EQ(runToEnd(args(dir / "whole.lcm", dir / "whole.strata"), dir / "whole.log").fused,
+            3 * kSessionFrames);
+
+  const fs::path map = dir / "resumed.strata";
+  ASSERT_NO_FATAL_FAILURE(
+      killAfterSave(args(dir / "first.lcm", map), dir / "first.log", map, dir / "saved.strata"));
+  const MapFileContents saved = loadMapFile((dir / "saved.strata").string());
+  ASSERT_TRUE(saved.sessions.has_value()) << "a mapper state (format version 2)";
+  EXPECT_EQ(saved.sessions->sessions_ended, 1u);
+  EXPECT_TRUE(saved.sessions->session_open);
+  EXPECT_EQ(saved.sessions->session_frames, static_cast<std::uint64_t>(kCutFrame));
+  ASSERT_TRUE(saved.static_map.has_value());
+
+  const MapperSummary rest = runToEnd(args(dir / "rest.lcm", map), dir / "rest.log");
+  EXPECT_EQ(rest.fused, 2 * kSessionFrames - kCutFrame);
+  EXPECT_NE(readText(dir / "rest.log").find("1 ended session and session 1 open with " +
+                                            std::to_string(kCutFrame) + " frames"),
+            std::string::npos)
+      << readText(dir / "rest.log");
+
+  const MapFileContents whole = loadMapFile((dir / "whole.strata").string());
+  const MapFileContents resumed = loadMapFile(map.string());
+  for (const MapFileContents* c : {&whole, &resumed}) {
+    ASSERT_TRUE(c->sessions.has_value());
+    EXPECT_EQ(c->sessions->sessions_ended, 3u);
+    EXPECT_FALSE(c->sessions->session_open);
+    EXPECT_EQ(c->sessions->frames, static_cast<std::uint64_t>(3 * kSessionFrames));
+  }
+  const MapDifference diff = compareMaps(whole.map, resumed.map, 0.0f, 0.0f);
+  std::printf("[ resume ] static maps after 3 sessions: %zu observed voxels compared, %zu distance "
+              "and %zu weight mismatches\n",
+              diff.updated_voxels, diff.distance_mismatches, diff.weight_mismatches);
+  EXPECT_GT(diff.updated_voxels, 10000u);
+  EXPECT_EQ(diff.blocks_only_in_a + diff.blocks_only_in_b, 0u);
+  EXPECT_EQ(diff.distance_mismatches, 0u) << "max " << diff.max_distance_difference_m << " m";
+  EXPECT_EQ(diff.weight_mismatches, 0u);
+  EXPECT_EQ(diff.color_mismatches, 0u);
+  EXPECT_GT(compareMaps(whole.map, *saved.static_map, 1e-5f, 1e-5f).weight_mismatches, 1000u)
+      << "the sessions after the kill mattered";
   fs::remove_all(dir);
 }
 

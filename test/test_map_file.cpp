@@ -1,6 +1,8 @@
-// Map files: deterministic round trip, refusal of corrupted and truncated files, device upload.
+// Map files: deterministic round trip, refusal of corrupted and truncated files, device upload;
+// a mapper state (format version 2): round trip, what plain readers see, records that lie.
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <filesystem>
 
 #include "strata/core/atomic_file.h"
@@ -81,6 +83,67 @@ TEST_F(MapFileTest, MissingFileAndWrongVersionAreRefused) {
 
 TEST_F(MapFileTest, UnwritablePathFailsWithoutTouchingTheOldFile) {
   EXPECT_THROW(saveMap(map_, path("no/such/dir/map.strata")), Error);
+}
+
+TEST_F(MapFileTest, AMapperStateRoundTripsAndPlainReadersSeeItsLiveLayer) {
+  TsdfMap static_map = map_;
+  static_map.allocateBlock(BlockIndex(40, 40, 40))[0] = {0.01f, 3.0f, 0u};  // only S has it
+  MapSessionRecord record;
+  record.sessions_ended = 2;
+  record.session_open = true;
+  record.session_frames = 4;
+  record.frames = 30;
+  saveMapFile(MapFileContents{map_, static_map, record}, path("state.strata"));
+  const MapFileContents loaded = loadMapFile(path("state.strata"));
+  ASSERT_TRUE(loaded.sessions.has_value());
+  EXPECT_EQ(loaded.sessions->sessions_ended, 2u);
+  EXPECT_TRUE(loaded.sessions->session_open);
+  EXPECT_EQ(loaded.sessions->session_frames, 4u);
+  EXPECT_EQ(loaded.sessions->frames, 30u);
+  ASSERT_TRUE(loaded.static_map.has_value());
+  EXPECT_EQ(serializeMap(*loaded.static_map), serializeMap(static_map));
+  EXPECT_EQ(serializeMap(loaded.map), serializeMap(map_));
+  saveMapFile(loaded, path("again.strata"));
+  EXPECT_EQ(readFile(path("state.strata")), readFile(path("again.strata")));
+  EXPECT_EQ(readFile(path("state.strata"))[8], 2) << "format version 2";
+
+  // Readers of plain maps see layer 1, the live layer.
+  EXPECT_EQ(serializeMap(loadMap(path("state.strata"))), serializeMap(map_));
+  // A plain map stays version 1, without a record.
+  saveMap(map_, path("plain.strata"));
+  EXPECT_EQ(readFile(path("plain.strata"))[8], 1);
+  const MapFileContents plain = loadMapFile(path("plain.strata"));
+  EXPECT_FALSE(plain.sessions.has_value());
+  EXPECT_FALSE(plain.static_map.has_value());
+}
+
+TEST_F(MapFileTest, AMapperStateAtOddsWithItsRecordIsRefused) {
+  MapSessionRecord record;
+  record.sessions_ended = 1;
+  EXPECT_THROW(serializeMapFile(MapFileContents{map_, map_, record}), InputError)
+      << "a static layer without an open session";
+  record.session_open = true;
+  EXPECT_THROW(serializeMapFile(MapFileContents{map_, std::nullopt, record}), InputError)
+      << "an open session without its static layer";
+
+  // A record that says "open" over a file of one layer (checksum made to fit).
+  record.session_open = false;
+  std::vector<std::uint8_t> bytes = serializeMapFile(MapFileContents{map_, std::nullopt, record});
+  constexpr std::size_t kOpenFlagAt = 8 + 4 + 4 + 60 + 4 + 4;  // magic .. sessions_ended
+  bytes[kOpenFlagAt] = 1;
+  const std::uint32_t crc = crc32(bytes.data(), bytes.size() - 4);
+  std::memcpy(bytes.data() + bytes.size() - 4, &crc, 4);
+  try {
+    deserializeMapFile(bytes, "lying.strata");
+    FAIL() << "a record at odds with the layers was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("lying.strata' holds 1 layers"), std::string::npos)
+        << e.what();
+  }
+  bytes[kOpenFlagAt] = 7;
+  const std::uint32_t crc7 = crc32(bytes.data(), bytes.size() - 4);
+  std::memcpy(bytes.data() + bytes.size() - 4, &crc7, 4);
+  EXPECT_THROW(deserializeMapFile(bytes, "flag7.strata"), InputError) << "a flag neither 0 nor 1";
 }
 
 TEST_F(MapFileTest, DeviceUploadRoundTrip) {

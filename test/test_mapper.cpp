@@ -35,6 +35,15 @@ std::string tempPath(const std::string& name) {
   return (std::filesystem::temp_directory_path() / ("strata_test_mapper_" + name)).string();
 }
 
+/// A Mapper with change detection on the test grid (free space allocated) at `voxel_m`.
+MapperConfig changeConfig(float voxel_m) {
+  MapperConfig config;
+  config.map = test::testMapConfig(voxel_m, true);
+  config.change_detection = true;
+  config.change = test::testChangeConfig(voxel_m);
+  return config;
+}
+
 /// save -> load -> save gives the same bytes, and the loaded mapper meshes the same surface.
 void expectRoundTrip(Mapper& mapper, const MapperConfig& config, const std::string& name) {
   const std::string first = tempPath(name + "_1.strata");
@@ -174,10 +183,7 @@ TEST(Mapper, SessionRoundTripFusesOnceAndFindsWhatTheDetectorFinds) {
   const sim::AnalyticDataset after = test::analyticSession({box}, 6);
   const float voxel_m = 0.04f;
 
-  MapperConfig config;
-  config.map = test::testMapConfig(voxel_m, true);
-  config.change_detection = true;
-  config.change = test::testChangeConfig(voxel_m);
+  MapperConfig config = changeConfig(voxel_m);
   Mapper mapper(config, test::sharedContext());
   EXPECT_EQ(mapper.beginSession(), 0);
   for (std::size_t i = 0; i < before.size(); ++i) mapper.integrate(before.load(i), before.intrinsics());
@@ -228,10 +234,7 @@ TEST(Mapper, ReleasedSessionsKeepDeviceMemoryFlatAndFindTheSameObjects) {
   const sim::AnalyticDataset before = test::analyticSession({}, 6);
   const sim::AnalyticDataset after = test::analyticSession({appearingBox()}, 6);
   const float voxel_m = 0.04f;
-  MapperConfig config;
-  config.map = test::testMapConfig(voxel_m, true);
-  config.change_detection = true;
-  config.change = test::testChangeConfig(voxel_m);
+  MapperConfig config = changeConfig(voxel_m);
 
   std::vector<SessionResult> kept_results;
   {
@@ -317,6 +320,94 @@ TEST(Mapper, ASavedMapAsASessionFindsWhatFusingTheSessionFinds) {
   EXPECT_FALSE(change::sessionObjects(later.changeDetector(), 1, config.objects).empty());
   EXPECT_THROW(other_day.addSessionMap(saved), InputError) << "change detection off";
   EXPECT_THROW(other_day.changeDetector(), InputError);
+}
+
+/// runSessions with a kill and a restart before frame `cut_frame` of session `cut_session` (-1:
+/// before the session begins): the state a mapper saves, in bytes, is all that survives.
+std::vector<SessionResult> runSessionsWithRestart(const MapperConfig& config,
+                                                  const sim::AnalyticDataset& before,
+                                                  const sim::AnalyticDataset& after, int count,
+                                                  int cut_session, int cut_frame,
+                                                  TsdfMap* static_map) {
+  auto mapper = std::make_unique<Mapper>(config, test::sharedContext());
+  auto restart = [&](int session) {
+    const std::vector<std::uint8_t> bytes = serializeMapFile(mapper->snapshot());
+    const bool was_open = mapper->sessionOpen();
+    mapper.reset();  // the kill: nothing but the bytes survives
+    mapper = Mapper::resume(deserializeMapFile(bytes, "state"), test::sharedContext(), config);
+    EXPECT_EQ(mapper->sessionOpen(), was_open);
+    EXPECT_EQ(mapper->sessionCount(), session + (was_open ? 1 : 0));
+  };
+  std::vector<SessionResult> results;
+  for (int s = 0; s < count; ++s) {
+    const sim::AnalyticDataset& data = s % 2 == 0 ? before : after;
+    if (s == cut_session && cut_frame < 0) restart(s);
+    mapper->beginSession();
+    for (std::size_t i = 0; i < data.size(); ++i) {
+      if (s == cut_session && static_cast<int>(i) == cut_frame) restart(s);
+      mapper->integrate(data.load(i), data.intrinsics());
+    }
+    results.push_back(mapper->endSession());
+  }
+  *static_map = mapper->staticMap();
+  return results;
+}
+
+TEST(Mapper, ResumedFromASavedStateEndsAsTheMapperThatWentOn) {
+  const sim::AnalyticDataset before = test::analyticSession({}, 6);
+  const sim::AnalyticDataset after = test::analyticSession({appearingBox()}, 6);
+  const float voxel_m = 0.04f;
+  MapperConfig config = changeConfig(voxel_m);
+  config.release_ended_sessions = true;  // as strata-mapper runs
+  TsdfMap whole_static(config.map);
+  const std::vector<SessionResult> whole =
+      runSessionsWithRestart(config, before, after, 3, -1, 0, &whole_static);
+  ASSERT_FALSE(whole[1].objects.empty()) << "the box appears in session 1";
+
+  // In the first session (S still empty), in the second (S holds session 0) and between them.
+  for (const auto& [session, frame] : {std::pair{0, 3}, std::pair{1, 2}, std::pair{1, -1}}) {
+    SCOPED_TRACE("restart before frame " + std::to_string(frame) + " of session " +
+                 std::to_string(session));
+    TsdfMap resumed_static(config.map);
+    const std::vector<SessionResult> resumed =
+        runSessionsWithRestart(config, before, after, 3, session, frame, &resumed_static);
+    const test::MapDifference diff = test::compareMaps(whole_static, resumed_static, 0.0f, 0.0f);
+    EXPECT_GT(diff.updated_voxels, 1000u);
+    EXPECT_EQ(diff.blocks_only_in_a + diff.blocks_only_in_b, 0u);
+    EXPECT_EQ(diff.distance_mismatches, 0u) << "max " << diff.max_distance_difference_m << " m";
+    EXPECT_EQ(diff.weight_mismatches, 0u);
+    EXPECT_EQ(diff.color_mismatches, 0u);
+    ASSERT_EQ(resumed.size(), whole.size());
+    for (std::size_t s = 0; s < whole.size(); ++s) {
+      EXPECT_EQ(resumed[s].session, whole[s].session);
+      ASSERT_EQ(resumed[s].objects.size(), whole[s].objects.size()) << "session " << s;
+      for (std::size_t o = 0; o < whole[s].objects.size(); ++o) {
+        EXPECT_EQ(resumed[s].objects[o].centroid, whole[s].objects[o].centroid);
+      }
+    }
+  }
+}
+
+TEST(Mapper, AnOpenChangeSessionDoesNotResumeWithoutChangeDetection) {
+  const sim::AnalyticDataset data = test::analyticSession({}, 2);
+  const MapperConfig config = changeConfig(0.04f);
+  Mapper mapper(config, test::sharedContext());
+  mapper.integrate(data.load(0), data.intrinsics());
+  const MapFileContents open = mapper.snapshot();
+  ASSERT_TRUE(open.sessions.has_value());
+  EXPECT_TRUE(open.sessions->session_open);
+  MapperConfig plain;
+  plain.map = config.map;
+  try {
+    Mapper::resume(open, test::sharedContext(), plain);
+    FAIL() << "an open session's layer became a plain map";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("change detection on"), std::string::npos) << e.what();
+  }
+  mapper.endSession();
+  const std::unique_ptr<Mapper> plain_mapper =
+      Mapper::resume(mapper.snapshot(), test::sharedContext(), plain);
+  EXPECT_EQ(plain_mapper->blockCount(), mapper.blockCount()) << "an ended state is its S";
 }
 
 TEST(Mapper, BadInputIsRefusedBeforeAnythingChanges) {

@@ -56,11 +56,13 @@ MapperConfig mapperConfig(const MapperOptions& options) {
   return config;
 }
 
-MapperCore::MapperCore(vk::Context& context, const MapperOptions& options, const TsdfMap* start_map)
+MapperCore::MapperCore(vk::Context& context, const MapperOptions& options,
+                       const MapFileContents* start)
     : context_(context),
       options_(validated(options)),
-      mapper_(start_map ? Mapper::fromMap(*start_map, context, mapperConfig(options_))
-                        : std::make_unique<Mapper>(mapperConfig(options_), context)) {
+      mapper_(start ? Mapper::resume(*start, context, mapperConfig(options_))
+                    : std::make_unique<Mapper>(mapperConfig(options_), context)) {
+  if (mapper_->sessionOpen()) session_ = mapper_->sessionCount() - 1;
   if (!options_.change_detection || !options_.object_database) return;
   const std::string path = options_.objectsFile();
   std::error_code error;

@@ -35,13 +35,14 @@ MapperConfig mapperConfig(const MapperOptions& options);
 
 class MapperCore {
  public:
-  /// `context` must outlive the core. Throws InputError for invalid options. `start_map`
-  /// (optional): the map to continue, e.g. the last one saved before a kill; its voxel size and
-  /// truncation replace the options'. Without change detection, frames then fuse into it exactly
-  /// as they would have into the map that was saved; with it, it is the static estimate of an
-  /// ended session and the next frame opens a new one (Mapper::fromMap).
+  /// `context` must outlive the core. Throws InputError for invalid options. `start`
+  /// (optional): the saved file to continue, e.g. the last one saved before a kill; its voxel
+  /// size and truncation replace the options'. Frames then fuse into it exactly as they would
+  /// have into the mapper that saved it: with change detection, a mapper state continues its
+  /// open session (or the next frame opens a new one after its ended sessions), and a plain map
+  /// is the static estimate of an ended session (Mapper::resume).
   MapperCore(vk::Context& context, const MapperOptions& options,
-             const TsdfMap* start_map = nullptr);
+             const MapFileContents* start = nullptr);
   ~MapperCore();
 
   /// Fuses one frame (opening a session when none is open). Throws InputError for a bad frame

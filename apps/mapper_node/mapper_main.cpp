@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <string>
 
 #include "mapper_node/mapper_core.h"
 #include "mapper_node/mapper_node.h"
@@ -18,10 +19,23 @@
 
 namespace {
 
+/// What the map file holds, in words for the resume line.
+std::string describe(const strata::MapFileContents& contents) {
+  if (!contents.sessions) return "a plain map";
+  const strata::MapSessionRecord& r = *contents.sessions;
+  std::string text = std::to_string(r.sessions_ended) + " ended session" +
+                     (r.sessions_ended == 1 ? "" : "s");
+  if (r.session_open) {
+    text += " and session " + std::to_string(r.sessions_ended) + " open with " +
+            std::to_string(r.session_frames) + " frames";
+  }
+  return text + ", " + std::to_string(r.frames) + " frames in all";
+}
+
 /// The map to continue: --map's file when it exists. A file that does not load (torn, wrong
-/// checksum, other version) is refused with InputError and left as it is: the mapper must not
-/// overwrite the only copy of a map someone may still recover.
-std::optional<strata::TsdfMap> resumeMap(const strata::apps::MapperOptions& options) {
+/// checksum, other version) or that these options cannot continue is refused with InputError and
+/// left as it is: the mapper must not overwrite the only copy of a map someone may still recover.
+std::optional<strata::MapFileContents> resumeMap(const strata::apps::MapperOptions& options) {
   const std::string& path = options.map_path;
   std::error_code error;
   if (path.empty() || !std::filesystem::exists(path, error)) {
@@ -29,30 +43,38 @@ std::optional<strata::TsdfMap> resumeMap(const strata::apps::MapperOptions& opti
                                     path.c_str());
     return std::nullopt;
   }
+  const std::string refused =
+      "cannot resume from the map file (left untouched; move it away to start an empty map): ";
   try {
-    strata::TsdfMap map = strata::loadMap(path);
-    const float voxel_m = map.config().voxel_size_m;
-    std::fprintf(stderr, "strata-mapper: resuming from %s (%zu blocks, %.3f m voxels%s)%s\n",
-                 path.c_str(), map.blockCount(), voxel_m,
+    strata::MapFileContents contents = strata::loadMapFile(path);
+    if (!options.change_detection && contents.sessions && contents.sessions->session_open) {
+      throw strata::InputError("map file '" + path +
+                               "' holds a change-detection session still open (its map is that "
+                               "session's observations only): continue it without --no-change");
+    }
+    const float voxel_m = contents.map.config().voxel_size_m;
+    std::string role;
+    if (options.change_detection && !contents.sessions) {
+      role = "; change detection: it is the static map of an ended session";
+    }
+    std::fprintf(stderr, "strata-mapper: resuming from %s (%s; %zu blocks, %.3f m voxels%s)%s\n",
+                 path.c_str(), describe(contents).c_str(), contents.map.blockCount(), voxel_m,
                  voxel_m != options.map.voxel_size_m ? ", the file's, not --voxel-size" : "",
-                 options.change_detection
-                     ? "; change detection: it is the static map of an ended session"
-                     : "");
-    return map;
+                 role.c_str());
+    return contents;
   } catch (const strata::InputError& e) {
-    throw strata::InputError(std::string("cannot resume from the map file (left untouched; move "
-                                         "it away to start an empty map): ") + e.what());
+    throw strata::InputError(refused + e.what());
   }
 }
 
 int runMapper(const strata::apps::MapperOptions& options, const std::atomic<bool>& stop) {
   using namespace strata;
   options.validate();
-  const std::optional<TsdfMap> start_map = resumeMap(options);  // before the device
+  const std::optional<MapFileContents> start = resumeMap(options);  // before the device
   vk::ContextOptions context_options;
   context_options.device_selector = options.device;
   auto context = vk::Context::create(context_options);
-  apps::MapperCore core(*context, options, start_map ? &*start_map : nullptr);
+  apps::MapperCore core(*context, options, start ? &*start : nullptr);
   lcm::LCM input(options.url);
   std::unique_ptr<lcm::LCM> separate_output;
   if (!options.output_url.empty()) separate_output = std::make_unique<lcm::LCM>(options.output_url);

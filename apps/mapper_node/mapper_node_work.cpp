@@ -40,9 +40,14 @@ bool MapperNode::run(const std::atomic<bool>& stop) {
   }
   receiving_ = false;
   receiver.join();
-  // Nothing already received is lost: fuse the backlog, honour queued commands (a save), then
-  // publish and save what the map holds.
-  while (auto frame = queue_.pop(std::chrono::milliseconds(0))) fuseOne(*frame);
+  // Nothing already received is lost: fuse the backlog and honour queued commands (a session's
+  // end, a save) in the order they arrived, then publish and save what the map holds.
+  for (;;) {
+    runCommands();  // those that arrived before the oldest queued frame
+    auto frame = queue_.pop(std::chrono::milliseconds(0));
+    if (!frame) break;
+    fuseOne(*frame);
+  }
   runCommands(true);
   try {
     publishMesh(false);

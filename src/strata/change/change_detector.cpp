@@ -86,6 +86,21 @@ void ChangeDetector::requireSameGrid(const TsdfMap& session_map, const char* wha
   }
 }
 
+void ChangeDetector::restore(const TsdfMap& static_map, int ended_sessions) {
+  if (!sessions_.empty()) {
+    throw InputError("restore: the detector has sessions already (" +
+                     std::to_string(sessions_.size()) + ")");
+  }
+  if (ended_sessions < 0) throw InputError("restore: a negative count of ended sessions");
+  requireSameGrid(static_map, "restore");
+  backend_->restore(static_map, ended_sessions);
+  Session ended;
+  ended.ended = true;
+  ended.released = true;
+  sessions_.assign(static_cast<std::size_t>(ended_sessions), ended);
+  ended_ = ended_sessions;
+}
+
 int ChangeDetector::addSessionMap(const TsdfMap& session_map) {
   requireSameGrid(session_map, "addSessionMap");
   const int session = beginSession();

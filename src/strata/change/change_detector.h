@@ -45,6 +45,12 @@ class ChangeDetector {
   /// Fuses one frame into `session` (begun, not ended). Throws InputError for a bad session or
   /// frame before anything changes.
   FrameStats integrate(int session, const RgbdFrame& frame, const CameraIntrinsics& intrinsics);
+  /// Continues a detector that was saved (a mapper's state, map_file.h): S becomes `static_map`
+  /// (same voxel size and truncation) and sessions 0 .. ended_sessions-1 count as ended and
+  /// released, so the next beginSession() returns `ended_sessions`. Only on a detector without
+  /// sessions (InputError otherwise, before anything changes). D is empty until the next
+  /// endSession().
+  void restore(const TsdfMap& static_map, int ended_sessions);
   /// Begins a session whose layer is `session_map` (a saved map with the same voxel size and
   /// truncation); returns its index. It still needs endSession.
   int addSessionMap(const TsdfMap& session_map);

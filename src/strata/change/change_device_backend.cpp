@@ -39,6 +39,11 @@ class DeviceBackend final : public ChangeBackend {
     session_layers_[session] = SessionLayers{};
   }
 
+  void restore(const TsdfMap& static_map, int ended_sessions) override {
+    fusion_.map().uploadLayer(static_map, kStaticLayer);
+    session_layers_.assign(static_cast<std::size_t>(ended_sessions), SessionLayers{});
+  }
+
   int sessionTsdfLayer(int session) const override { return session_layers_[session].tsdf; }
 
   FrameStats integrate(int session, const RgbdFrame& frame,

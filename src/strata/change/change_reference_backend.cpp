@@ -43,6 +43,12 @@ class ReferenceBackend final : public ChangeBackend {
 
   void setSessionMap(int session, const TsdfMap& map) override { sessions_[session] = map; }
 
+  void restore(const TsdfMap& static_map, int ended_sessions) override {
+    static_ = static_map;
+    sessions_.assign(static_cast<std::size_t>(ended_sessions), TsdfMap(map_config_));
+    parts_.assign(static_cast<std::size_t>(ended_sessions), LabelMap{});
+  }
+
   ChangeUpdateStats update(int session) override {
     const auto wall_start = Clock::now();
     ChangeUpdateStats stats;

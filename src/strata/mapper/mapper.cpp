@@ -302,14 +302,60 @@ KeyframeDecision Mapper::scoreKeyframe(const RgbdFrame& frame, const CameraIntri
   return scoreKeyframe(posed, intrinsics);
 }
 
+MapFileContents Mapper::snapshot() {
+  MapFileContents contents{download(), std::nullopt, std::nullopt};
+  if (!impl_->detector) return contents;
+  MapSessionRecord record;
+  record.session_open = session_open_;
+  record.sessions_ended = static_cast<std::uint32_t>(sessions_ - (session_open_ ? 1 : 0));
+  record.session_frames = session_open_ ? session_frames_ : 0;
+  record.frames = frames_;
+  contents.sessions = record;
+  if (session_open_) contents.static_map = impl_->detector->staticMap();
+  return contents;
+}
+
 void Mapper::save(const std::string& path) {
   if (path.empty()) throw InputError("save: no path given");
-  saveMap(download(), path);
+  saveMapFile(snapshot(), path);
 }
 
 std::unique_ptr<Mapper> Mapper::load(const std::string& path, vk::Context& context,
                                      MapperConfig config) {
-  return fromMap(loadMap(path), context, std::move(config));
+  const MapFileContents contents = loadMapFile(path);
+  try {
+    return resume(contents, context, std::move(config));
+  } catch (const InputError& e) {
+    throw InputError("map file '" + path + "': " + e.what());
+  }
+}
+
+std::unique_ptr<Mapper> Mapper::resume(const MapFileContents& contents, vk::Context& context,
+                                       MapperConfig config) {
+  if (!contents.sessions) return fromMap(contents.map, context, std::move(config));
+  const MapSessionRecord& record = *contents.sessions;
+  if (!config.change_detection) {
+    if (record.session_open) {
+      throw InputError("it holds a change-detection session still open, whose layer is that "
+                       "session's observations only: continue it with change detection on");
+    }
+    return fromMap(contents.map, context, std::move(config));  // S, the static world
+  }
+  config.map.voxel_size_m = contents.map.config().voxel_size_m;
+  config.map.truncation_voxels = contents.map.config().truncation_voxels;
+  auto mapper = std::make_unique<Mapper>(config, context);
+  change::ChangeDetector& detector = *mapper->impl_->detector;
+  const TsdfMap& static_map = record.session_open ? *contents.static_map : contents.map;
+  detector.restore(static_map, static_cast<int>(record.sessions_ended));
+  mapper->sessions_ = static_cast<int>(record.sessions_ended);
+  mapper->frames_ = record.frames;
+  if (record.session_open) {
+    detector.addSessionMap(contents.map);  // begins the open session with its layer so far
+    ++mapper->sessions_;
+    mapper->session_open_ = true;
+    mapper->session_frames_ = record.session_frames;
+  }
+  return mapper;
 }
 
 std::unique_ptr<Mapper> Mapper::fromMap(const TsdfMap& map, vk::Context& context,

@@ -29,6 +29,7 @@
 #include "strata/esdf/esdf.h"
 #include "strata/esdf/esdf_query.h"
 #include "strata/integrate/device_fusion.h"
+#include "strata/map/map_file.h"
 #include "strata/map/tsdf_map.h"
 #include "strata/mapper/mapper_config.h"
 #include "strata/mesh/block_meshes.h"
@@ -167,13 +168,23 @@ class Mapper {
 
   /// Host copy of the live layer (device -> host).
   TsdfMap download();
-  /// Writes the live layer atomically (versioned, checksummed; map/map_file.h).
+  /// What save() writes (device -> host): the live layer; with change detection also where the
+  /// sessions stand and, while a session is open, the static estimate S (map/map_file.h).
+  MapFileContents snapshot();
+  /// Writes snapshot() atomically (versioned, checksummed; map/map_file.h): a plain map (format
+  /// version 1) without change detection, a mapper state (version 2) with it.
   void save(const std::string& path);
-  /// A mapper whose live layer is the map in `path` (change detection, if on in `config`, starts
-  /// with it as the first ended session's static estimate). The file's voxel size and
-  /// truncation replace config.map's. InputError naming the file when it cannot be read.
+  /// A mapper that continues from a saved file: a mapper state (version 2) resumes exactly where
+  /// the saving mapper stood (S, the open session's layer, the session count), so frames fused
+  /// after it give the map an uninterrupted mapper would have; a plain map is loaded as
+  /// fromMap() does. The file's voxel size and truncation replace config.map's. InputError naming
+  /// the file when it cannot be read, and for a mapper state with an open session when `config`
+  /// has change detection off (its live layer is one session's observations only).
   static std::unique_ptr<Mapper> load(const std::string& path, vk::Context& context,
                                       MapperConfig config = {});
+  /// The same from a file's contents (e.g. read already to report on them).
+  static std::unique_ptr<Mapper> resume(const MapFileContents& contents, vk::Context& context,
+                                        MapperConfig config = {});
   /// The same from a map in memory (e.g. one already read for other uses).
   static std::unique_ptr<Mapper> fromMap(const TsdfMap& map, vk::Context& context,
                                          MapperConfig config = {});

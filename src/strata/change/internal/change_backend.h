@@ -20,6 +20,8 @@ class ChangeBackend {
   virtual void addSession(int session) = 0;
   /// Frees the layers of an ended session for a later addSession.
   virtual void releaseSession(int session) = 0;
+  /// S := static_map, and `ended_sessions` sessions that ended and were released (no layers).
+  virtual void restore(const TsdfMap& static_map, int ended_sessions) = 0;
   /// TSDF layer of `session` in deviceMap(); -1 without a device map.
   virtual int sessionTsdfLayer(int /*session*/) const { return -1; }
   virtual FrameStats integrate(int session, const RgbdFrame& frame,
