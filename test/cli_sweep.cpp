@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <fstream>
 #include <sstream>
 
 #include "test_utils.h"
@@ -46,6 +47,26 @@ std::string treeDifferences(const std::map<std::string, std::string>& before,
     if (before.count(path) == 0) s << " added " << path << ";";
   }
   return s.str();
+}
+
+void writeText(const fs::path& path, const std::string& text) {
+  fs::create_directories(path.parent_path());
+  std::ofstream(path, std::ios::binary) << text;
+}
+
+void makeCommonFixtures(const fs::path& dir) {
+  writeText(dir / "a_file", "a file, not a folder\n");
+  fs::create_directories(dir / "a_folder");
+  fs::create_directories(dir / "readonly");
+  fs::permissions(dir / "readonly", fs::perms::owner_read | fs::perms::owner_exec |
+                                        fs::perms::group_read | fs::perms::group_exec |
+                                        fs::perms::others_read | fs::perms::others_exec);
+}
+
+void removeFixtures(const fs::path& dir) {
+  std::error_code error;
+  fs::permissions(dir / "readonly", fs::perms::owner_all, fs::perm_options::add, error);
+  fs::remove_all(dir, error);
 }
 
 std::size_t sweepRows(const std::string& command, const std::vector<SweepRow>& rows,

@@ -26,6 +26,16 @@ struct SweepRow {
   bool needs_read_only_folder = false;
 };
 
+/// Writes `text` to `path`, making its folders (fixture files).
+void writeText(const std::filesystem::path& path, const std::string& text);
+
+/// The fixtures every sweep needs, in `dir`: `a_file` (a file where a folder is expected),
+/// `a_folder` (a folder where a file is expected) and `readonly` (a folder without write
+/// permission: writable anyway as root, where the rows needing it skip).
+void makeCommonFixtures(const std::filesystem::path& dir);
+/// Undoes makeCommonFixtures' permissions and removes `dir` (for TearDown; never throws).
+void removeFixtures(const std::filesystem::path& dir);
+
 /// Every file (its bytes) and folder under `root` (or `root` itself when it is a file), by path.
 std::map<std::string, std::string> snapshotTree(const std::filesystem::path& root);
 

@@ -45,15 +45,19 @@ class FuseCliTest : public ::testing::Test {
     return path;
   }
 
-  int fuse(const std::string& dataset, const std::string& map_name = "map.strata", int frames = 0) {
+  int fuse(const std::string& dataset, const std::string& map_name = "map.strata", int frames = 0,
+           bool skip_bad_frames = false) {
     apps::FuseOptions options;
     options.dataset = dataset;
     options.frames = frames;
     options.map_path = (dir_ / map_name).string();
     options.quiet = true;
+    options.skip_bad_frames = skip_bad_frames;
+    testing::internal::CaptureStdout();
     testing::internal::CaptureStderr();
     const int code = apps::runFuse(options);
     stderr_ = testing::internal::GetCapturedStderr();
+    stdout_ = testing::internal::GetCapturedStdout();
     return code;
   }
 
@@ -61,6 +65,7 @@ class FuseCliTest : public ::testing::Test {
   std::vector<RgbdFrame> frames_;
   CameraIntrinsics intrinsics_;
   std::string stderr_;
+  std::string stdout_;
 };
 
 TEST_F(FuseCliTest, GoodDatasetFusesAndExitsZero) {
@@ -85,15 +90,28 @@ TEST_F(FuseCliTest, ZeroIntrinsicsAreRefused) {
   EXPECT_NE(stderr_.find("fx"), std::string::npos) << stderr_;
 }
 
-TEST_F(FuseCliTest, BadFrameMidwayStopsButKeepsWhatWasFused) {
+TEST_F(FuseCliTest, BadFrameMidwayStopsWithoutOutputOrIsSkippedWhenAsked) {
   const std::string path = writeDataset("bad_frame");
   // Frame 2's depth image is replaced by one of the wrong size.
   writeDepthPng(path + "/depth/000002.png", DepthImage(320, 240, 1.0f), 5000.0);
-  EXPECT_NE(fuse(path, "partial.strata"), 0);
+  EXPECT_EQ(fuse(path, "partial.strata"), 1);
   EXPECT_NE(stderr_.find("000002.png"), std::string::npos) << stderr_;
-  EXPECT_NE(stderr_.find("keeping the 2 frames"), std::string::npos) << stderr_;
-  const TsdfMap partial = loadMap((dir_ / "partial.strata").string());
-  EXPECT_GT(partial.blockCount(), 100u);
+  EXPECT_NE(stderr_.find("no output written"), std::string::npos) << stderr_;
+  EXPECT_NE(stderr_.find("--skip-bad-frames"), std::string::npos) << stderr_;
+  EXPECT_FALSE(fs::exists(dir_ / "partial.strata")) << "a map of part of the frames";
+
+  // With --skip-bad-frames the other frames are fused: the map of the dataset without frame 2.
+  EXPECT_EQ(fuse(path, "skipped.strata", 0, true), 0) << stderr_;
+  EXPECT_NE(stdout_.find("Skipped 1 bad frame"), std::string::npos) << stdout_;
+  EXPECT_NE(stderr_.find("skipped frame 3 of 4"), std::string::npos) << stderr_;
+  std::vector<RgbdFrame> without = frames_;
+  without.erase(without.begin() + 2);
+  const std::string three = (dir_ / "three_frames").string();
+  writeTumDataset(three, intrinsics_, without);
+  EXPECT_EQ(fuse(three, "three.strata"), 0) << stderr_;
+  const TsdfMap skipped = loadMap((dir_ / "skipped.strata").string());
+  EXPECT_GT(skipped.blockCount(), 100u);
+  EXPECT_EQ(serializeMap(skipped), serializeMap(loadMap((dir_ / "three.strata").string())));
 }
 
 TEST_F(FuseCliTest, MissingFileAndNonFinitePoseAreRefused) {

@@ -42,11 +42,7 @@ namespace {
 namespace fs = std::filesystem;
 
 using Row = test::SweepRow;
-
-void writeText(const fs::path& path, const std::string& text) {
-  fs::create_directories(path.parent_path());
-  std::ofstream(path, std::ios::binary) << text;
-}
+using test::writeText;
 
 /// A TUM trajectory: `count` poses from `t0_s` every 0.1 s along x.
 std::string tumTrajectory(double t0_s, int count) {
@@ -87,19 +83,10 @@ class CliSweep : public ::testing::Test {
     writeText(path("tum/rgb.txt"), "not read\n");
     writeText(path("tum/groundtruth.txt"), "not read\n");
     writeText(path("camera.yaml"), "not read\n");
-    writeText(path("a_file"), "a file, not a folder\n");
-    fs::create_directories(path("a_folder"));
-    fs::create_directories(path("readonly"));
-    fs::permissions(path("readonly"), fs::perms::owner_read | fs::perms::owner_exec |
-                                          fs::perms::group_read | fs::perms::group_exec |
-                                          fs::perms::others_read | fs::perms::others_exec);
+    test::makeCommonFixtures(dir_);
   }
 
-  void TearDown() override {
-    std::error_code error;
-    fs::permissions(path("readonly"), fs::perms::owner_all, fs::perm_options::add, error);
-    fs::remove_all(dir_, error);
-  }
+  void TearDown() override { test::removeFixtures(dir_); }
 
   fs::path path(const std::string& name) const { return dir_ / name; }
   std::string str(const std::string& name) const { return path(name).string(); }

@@ -85,9 +85,14 @@ std::string tempMapPath(const std::string& name) {
 }
 
 /// The map saved at `path` loads into a mapper as `expected`, exactly (and the file is removed).
-void expectLoads(const std::string& path, const TsdfMap& expected) {
-  const std::unique_ptr<Mapper> loaded = Mapper::load(path, test::sharedContext(), smallConfig());
+/// The map at `path`, loaded with `config`, holds `expected` (and, with change detection, its
+/// static estimate `expected_static`).
+void expectLoads(const std::string& path, const TsdfMap& expected,
+                 const MapperConfig& config = smallConfig(),
+                 const TsdfMap* expected_static = nullptr) {
+  const std::unique_ptr<Mapper> loaded = Mapper::load(path, test::sharedContext(), config);
   expectSameMap(loaded->download(), expected, "loaded map");
+  if (expected_static) expectSameMap(loaded->staticMap(), *expected_static, "loaded static map");
   std::filesystem::remove(path);
 }
 
@@ -265,7 +270,7 @@ TEST_F(DeviceFaults, WithChangeDetectionEveryLayerIsKeptWhenTheLayersCannotGrow)
   const std::string path = tempMapPath("change_detection");
   ASSERT_NO_THROW(mapper.save(path));
   vk::FaultInjection::disarm();
-  expectLoads(path, session_before);
+  expectLoads(path, session_before, config, &static_before);  // the open session and S
   ASSERT_NO_THROW(mapper.integrate(session.load(1), session.intrinsics()));
   EXPECT_GT(mapper.blockCount(), session_before.blockCount());
   EXPECT_NO_THROW(mapper.endSession());

@@ -223,5 +223,47 @@ TEST(VioNode, SummaryAndStatusLineNameEveryKind) {
   }
 }
 
+TEST(VioNode, ARunThatTrackedNothingExitsThreeAndSaysWhy) {
+  apps::VioSnapshot s;
+  std::string message;
+  EXPECT_EQ(apps::vioVerdict(s, &message), 0) << "nothing came: nothing to judge";
+  EXPECT_EQ(message, "");
+
+  s.pipeline.frames_processed = 40;
+  s.pipeline.frames_initializing = 40;
+  s.initialising_reason = "waiting for parallax";
+  s.pipeline.imu_out_of_range_skipped = 900;
+  EXPECT_EQ(apps::vioVerdict(s, &message), 3);
+  EXPECT_NE(message.find("40 frames processed and none tracked (never initialised: waiting for "
+                         "parallax)"),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find("900 IMU samples beyond any IMU's range"), std::string::npos) << message;
+  EXPECT_NE(apps::vioSummaryJson(s, "/data").find("\"out_of_range\": 900"), std::string::npos);
+
+  s.pipeline.frames_tracking = 1;
+  EXPECT_EQ(apps::vioVerdict(s, &message), 0) << "a tracked frame is a trajectory";
+  EXPECT_EQ(message.find("none tracked"), std::string::npos) << message;
+  EXPECT_NE(message.find("900 IMU samples"), std::string::npos) << "the warning stays";
+}
+
+/// Out-of-range IMU samples are skipped and counted like NaN ones: no pose comes of them.
+TEST(VioNode, ImuSamplesNoImuCouldGiveAreSkippedAndCounted) {
+  STRATA_REQUIRE_DATA("euroc_v101_micro", folder);
+  const euroc::EurocDataset d = euroc::EurocDataset::open(folder);
+  apps::VioCore core(euroc::readCalibration(d.folder()), odometry::VioPipelineConfig{});
+  const Stream s(d);
+  ImuMsg spin = s.imu(0);
+  spin.gyro_rad_s = {0.0, 0.0, 1.5 * odometry::kMaxImuAngularRate_rad_s};
+  EXPECT_TRUE(core.onImu(spin).empty());
+  ImuMsg shock = s.imu(1);
+  shock.accel_mps2 = {0.0, 0.0, -1.5 * odometry::kMaxImuAcceleration_mps2};
+  EXPECT_TRUE(core.onImu(shock).empty());
+  EXPECT_EQ(core.stats().imu_out_of_range_skipped, 2u);
+  EXPECT_EQ(core.stats().imu_samples, 0u);
+  EXPECT_TRUE(core.onImu(s.imu(2)).empty());
+  EXPECT_EQ(core.stats().imu_samples, 1u) << "an ordinary sample is taken";
+}
+
 }  // namespace
 }  // namespace strata::test

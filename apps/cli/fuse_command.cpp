@@ -136,6 +136,9 @@ CLI::App* addFuseCommand(CLI::App& app, FuseOptions& o) {
   fuse->add_flag_callback(
       "--no-free-space", [&o] { o.free_space = 0; }, "Allocate only the surfaces' band");
   fuse->add_flag("--quiet", o.quiet, "No progress bar");
+  fuse->add_flag("--skip-bad-frames", o.skip_bad_frames,
+                 "Skip frames that cannot be read or are refused (named and counted) instead of "
+                 "stopping without output");
   fuse->add_flag("--track", o.track,
                  "Track the frames against the map (frame-to-model ICP) instead of reading their "
                  "poses; the first frame keeps the dataset's pose; lost frames are not fused");
@@ -165,10 +168,12 @@ int runFuse(FuseOptions o) {
     if (o.free_space < 0 && o.esdf) o.map.allocate_free_space = true;
     o.map.validate();
     FuseSession session(o);
-    const bool complete = session.run();
+    // A run that stopped part-way writes nothing: a map of some of the frames at the path asked
+    // for would pass for the whole dataset's (the files there stay as they were).
+    if (!session.run()) return 1;
     const bool outputs_written = session.writeOutputs();
     session.printSummary();
-    return complete && outputs_written ? 0 : 1;
+    return outputs_written ? 0 : 1;
   } catch (const InputError& e) {
     std::fprintf(stderr, "strata fuse: input error: %s\n", e.what());
     return 2;

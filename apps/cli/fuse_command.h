@@ -34,6 +34,9 @@ struct FuseOptions {
   float slice_z_m = 1.0f;     // height of that slice
   int free_space = -1;        // map.allocate_free_space: 1 on, 0 off, -1 as set (on with esdf)
   bool quiet = false;
+  /// A frame that cannot be read or is refused as bad input is skipped (named, counted) instead
+  /// of ending the run without output.
+  bool skip_bad_frames = false;
   bool track = false;           // ignore the dataset's poses after the first: track each frame
   std::string trajectory_path;  // with track: the estimated poses, TUM format (camera to world)
   DatasetOptions dataset_options;

@@ -177,12 +177,26 @@ bool FuseSession::run() {
     try {
       fused = fuseFrame(dataset_->load(frame_indices_[i]));
     } catch (const Error& e) {
+      // NOTE: Mapper and the readers refuse a bad frame before the map changes, so skipping one
+      // leaves the map as if it were not in the dataset; a device error is not the frame's.
+      const bool bad_input = dynamic_cast<const InputError*>(&e) != nullptr;
+      if (bad_input && options_.skip_bad_frames) {
+        if (skipped_++ == 0) first_skipped_ = e.what();
+        if (!options_.quiet || skipped_ <= 3) {
+          std::fprintf(stderr, "\nstrata fuse: skipped frame %zu of %zu: %s\n", i + 1,
+                       frame_indices_.size(), e.what());
+        }
+        continue;
+      }
       progress.finish();
       failure_ = e.what();
       std::fprintf(stderr, "strata fuse: stopped at frame %zu of %zu: %s\n", i + 1,
                    frame_indices_.size(), e.what());
-      std::fprintf(stderr, "strata fuse: keeping the %zu frames fused so far\n", fused_);
-      break;
+      std::fprintf(stderr, "strata fuse: no output written (%s)%s\n",
+                   options_.map_path.empty() ? "no --map asked for"
+                                             : previousMapNote().c_str(),
+                   bad_input ? "; --skip-bad-frames fuses around frames like this one" : "");
+      return false;
     }
     if (fused) ++fused_;
     std::ostringstream detail;
@@ -198,6 +212,10 @@ bool FuseSession::run() {
   }
   progress.finish();
   wall_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (skipped_ > 0 && skipped_ == frame_indices_.size()) {
+    failure_ = "every frame was skipped (the first: " + first_skipped_ + ")";
+    std::fprintf(stderr, "strata fuse: %s; no output written\n", failure_.c_str());
+  }
   return failure_.empty();
 }
 
@@ -313,7 +331,10 @@ void FuseSession::printSummary() const {
       << " % of " << mesh.vertices << " mesh vertices within half a voxel of the surface.";
   }
   for (const std::string& w : written_) s << " Wrote " << w << ".";
-  if (!failure_.empty()) s << " Stopped early: " << failure_;
+  if (skipped_ > 0) {
+    s << " Skipped " << skipped_ << " bad frame" << (skipped_ == 1 ? "" : "s")
+      << " (--skip-bad-frames; the first: " << first_skipped_ << ").";
+  }
   if (!map_save_problem_.empty()) s << " Map not saved (" << previousMapNote() << ").";
   std::printf("%s\n", s.str().c_str());
 }

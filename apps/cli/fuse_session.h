@@ -23,8 +23,9 @@ class FuseSession {
   explicit FuseSession(const FuseOptions& options);
   ~FuseSession();
 
-  /// Fuses the frames. Returns false when a frame failed part-way: the error is printed and
-  /// everything fused before it is kept (and written by writeOutputs).
+  /// Fuses the frames. Returns false when a frame failed part-way (the error is printed with
+  /// what stays at the output paths; the caller then writes nothing). With --skip-bad-frames a
+  /// frame refused as bad input (unreadable, wrong size, bad pose) is skipped and counted.
   bool run();
   /// Downloads the map, writes map / mesh / rendering / ESDF slice as requested. Returns false
   /// when the map or the ESDF slice could not be written (the reason is printed and kept for
@@ -66,6 +67,8 @@ class FuseSession {
   double reference_ms_ = 0.0;
   double wall_s_ = 0.0;
   std::string failure_;
+  std::size_t skipped_ = 0;           // --skip-bad-frames
+  std::string first_skipped_;         // the first skipped frame's error
   std::vector<std::string> written_;
   Eigen::Isometry3d last_pose_ = Eigen::Isometry3d::Identity();
   // --track: totals over the tracked frames (the first frame is not tracked), the trajectory.

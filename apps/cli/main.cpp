@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
+#include "cli/option_checks.h"
 #include "cli/align_command.h"
 #include "cli/demo_command.h"
 #include "cli/diff_command.h"
@@ -82,11 +83,8 @@ int main(int argc, char** argv) {
   strata::apps::ExploreOptions explore_options;
   CLI::App* explore = strata::apps::addExploreCommand(app, explore_options);
   CLI::App* devices = app.add_subcommand("devices", "List the Vulkan devices");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e);
-  }
+  int exit_code = 0;
+  if (!strata::apps::parseCommandLine(app, argc, argv, &exit_code)) return exit_code;
   if (fuse->parsed()) return strata::apps::runFuse(fuse_options);
   if (mesh->parsed()) return strata::apps::runMesh(mesh_options);
   if (sim->parsed()) return strata::apps::runSim(sim_options);

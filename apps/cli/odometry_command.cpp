@@ -17,6 +17,7 @@
 #include "strata/core/output_paths.h"
 #include "strata/io/tum_format.h"
 #include "strata/odometry/pipeline/vio_replay.h"
+#include "strata/odometry/solver_log.h"
 #include "strata/io/tum_writer.h"
 
 namespace strata::apps {
@@ -193,16 +194,26 @@ OdometryRun replay(const OdometryOptions& o, const euroc::EurocDataset& dataset)
   return run;
 }
 
+constexpr double kMinPathForRates_m = 1.0;
+
 void printAccuracy(const OdometryAccuracy& a, bool stereo) {
   const auto& headline = stereo ? a.se3 : a.sim3;
   if (headline) {
     const auto& e = *headline;
-    std::printf(
-        "ATE (%s): RMSE %.4f m = %.2f %% of %.2f m of path, max %.4f m; RPE %.2f %%, "
-        "%.3f deg/m\n",
-        trajectory::alignmentName(e.alignment), e.ate_rmse_m,
-        e.path_length_m > 0 ? 100.0 * e.ate_rmse_m / e.path_length_m : 0.0, e.path_length_m,
-        e.ate_max_m, e.rpe_trans_percent, e.rpe_rot_deg_per_m);
+    // A share of the path or a per-metre drift of a path shorter than a metre says nothing.
+    if (e.path_length_m >= kMinPathForRates_m && std::isfinite(e.rpe_trans_percent)) {
+      std::printf(
+          "ATE (%s): RMSE %.4f m = %.2f %% of %.2f m of path, max %.4f m; RPE %.2f %%, "
+          "%.3f deg/m\n",
+          trajectory::alignmentName(e.alignment), e.ate_rmse_m,
+          100.0 * e.ate_rmse_m / e.path_length_m, e.path_length_m, e.ate_max_m,
+          e.rpe_trans_percent, e.rpe_rot_deg_per_m);
+    } else {
+      std::printf("ATE (%s): RMSE %.4f m, max %.4f m over %.2f m of tracked path (shorter than "
+                  "%.0f m: no share of the path nor RPE)\n",
+                  trajectory::alignmentName(e.alignment), e.ate_rmse_m, e.ate_max_m,
+                  e.path_length_m, kMinPathForRates_m);
+    }
     if (!stereo) std::printf("Sim(3) scale %.4f (1 = the IMU gave the true scale)\n", e.scale);
   }
   if (a.first) std::printf("Drift from the first pose: max %.4f m\n", a.first->ate_max_m);
@@ -233,6 +244,8 @@ CLI::App* addOdometryCommand(CLI::App& app, OdometryOptions& o) {
   cmd->add_option("--frames-csv", o.frames_csv_path,
                   "Per-frame CSV: status, features, stereo matches, landmarks, speed, ms, reason");
   cmd->add_flag("--quiet", o.quiet, "No progress bar");
+  cmd->add_flag("--solver-log", o.solver_log,
+                "Show the solver's own log (Ceres) on stderr; without it, only a count");
   return cmd;
 }
 
@@ -252,7 +265,18 @@ int runOdometry(const OdometryOptions& o) {
     OutputCleanup cleanup;  // a write that fails takes this run's other new outputs with it
     for (const std::string& path : {o.out_path, summary_path, o.plot_path, o.frames_csv_path})
       cleanup.file(path);
+    const odometry::SolverLog& solver = odometry::SolverLog::install("strata", o.solver_log);
     OdometryRun run = replay(o, dataset);
+    if (!solver.summary().empty()) {
+      std::fprintf(stderr, "strata odometry: %s\n", solver.summary().c_str());
+    }
+    if (run.stats.imu_out_of_range_skipped > 0) {
+      std::fprintf(stderr,
+                   "strata odometry: %zu IMU samples beyond any IMU's range (|gyro| > %.0f rad/s "
+                   "or |accel| > %.0f m/s^2) were skipped: are the IMU's units or scale wrong?\n",
+                   run.stats.imu_out_of_range_skipped, odometry::kMaxImuAngularRate_rad_s,
+                   odometry::kMaxImuAcceleration_mps2);
+    }
     const auto write_summary = [&] {
       const std::string json = odometrySummaryJson(run);
       writeFileAtomically(summary_path, std::vector<std::uint8_t>(json.begin(), json.end()));
@@ -290,6 +314,10 @@ int runOdometry(const OdometryOptions& o) {
         s.frontend_ms_total / std::max<std::size_t>(1, s.frames_processed),
         s.backend_ms_total / std::max<std::size_t>(1, s.frames_processed),
         s.frames_processed / std::max(1e-9, run.cpu_s));
+    if (s.frames_without_imu_skipped > 0) {
+      std::printf("%zu frames skipped: their IMU never came (see the summary's skipped counts)\n",
+                  s.frames_without_imu_skipped);
+    }
     if (run.accuracy) printAccuracy(*run.accuracy, run.stereo);
     std::printf("Wrote %s and %s\n", o.out_path.c_str(), summary_path.c_str());
     if (!o.plot_path.empty() && run.accuracy) {

@@ -36,6 +36,7 @@ struct OdometryOptions {
   int max_features = 0;  // 0: the front end's default
   int frames = 0;        // 0: all
   bool quiet = false;
+  bool solver_log = false;  // the solver's own log on stderr (odometry/solver_log.h)
 };
 
 CLI::App* addOdometryCommand(CLI::App& app, OdometryOptions& options);

@@ -55,6 +55,7 @@ Json skippedJson(const OdometryRun& run) {
   const odometry::PipelineStats& st = run.stats;
   Json j;
   j["imu_nonfinite"] = st.imu_nonfinite_skipped + run.reader.imu_nonfinite_skipped;
+  j["imu_out_of_range"] = st.imu_out_of_range_skipped;
   j["imu_out_of_order"] = st.imu_out_of_order_skipped;
   j["imu_gaps"] = run.reader.imu_gaps;
   j["imu_missing_samples"] = run.reader.imu_missing_samples;

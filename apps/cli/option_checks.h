@@ -25,6 +25,19 @@ inline CLI::Validator finiteNumber() {
       "FINITE", "FINITE");
 }
 
+/// Parses the command line. Returns false when the program should exit at once with
+/// `*exit_code`: 0 after --help, 2 for an option the parser refuses (its message printed), so a
+/// bad option exits as every other bad input does rather than with CLI11's own codes (105, 106..).
+inline bool parseCommandLine(CLI::App& app, int argc, char** argv, int* exit_code) {
+  try {
+    app.parse(argc, argv);
+    return true;
+  } catch (const CLI::ParseError& e) {
+    *exit_code = app.exit(e) == 0 ? 0 : 2;
+    return false;
+  }
+}
+
 /// `value` finite and above `min` (at least `min` with `inclusive`), else "<option> must be a
 /// finite number > <min> (<unit>), not <value>".
 inline void requireNumber(double value, const char* option, const char* unit, double min,

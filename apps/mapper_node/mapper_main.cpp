@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 
+#include "cli/option_checks.h"
 #include "mapper_node/mapper_core.h"
 #include "mapper_node/mapper_node.h"
 #include "strata/core/error.h"
@@ -71,13 +72,18 @@ int runMapper(const strata::apps::MapperOptions& options, const std::atomic<bool
   using namespace strata;
   options.validate();
   const std::optional<MapFileContents> start = resumeMap(options);  // before the device
+  // The LCM URLs too: a bad one is refused before the device starts (MapperNode names it).
+  lcm::LCM input(options.url);
+  std::unique_ptr<lcm::LCM> separate_output;
+  if (!options.output_url.empty()) separate_output = std::make_unique<lcm::LCM>(options.output_url);
+  if (!input.good()) throw InputError("LCM input '" + options.url + "' could not be opened");
+  if (separate_output && !separate_output->good()) {
+    throw InputError("LCM output '" + options.output_url + "' could not be opened");
+  }
   vk::ContextOptions context_options;
   context_options.device_selector = options.device;
   auto context = vk::Context::create(context_options);
   apps::MapperCore core(*context, options, start ? &*start : nullptr);
-  lcm::LCM input(options.url);
-  std::unique_ptr<lcm::LCM> separate_output;
-  if (!options.output_url.empty()) separate_output = std::make_unique<lcm::LCM>(options.output_url);
   apps::MapperNode node(input, separate_output ? *separate_output : input, core, options);
   std::fprintf(stderr,
                "strata-mapper: listening on %s (frames %s, poses %s, camera info %s, commands "
@@ -108,7 +114,8 @@ int main(int argc, char** argv) {
       "stats and change events"};
   strata::apps::MapperOptions options;
   strata::apps::addMapperOptions(app, options);
-  CLI11_PARSE(app, argc, argv);
+  int exit_code = 0;
+  if (!strata::apps::parseCommandLine(app, argc, argv, &exit_code)) return exit_code;
   const std::atomic<bool>& stop = strata::lcm_io::installStopSignals();
   try {
     return runMapper(options, stop);

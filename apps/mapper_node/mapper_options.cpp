@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "cli/option_checks.h"
 #include "strata/core/error.h"
 #include "strata/core/output_paths.h"
 
@@ -31,7 +32,13 @@ void MapperOptions::validate() const {
   if (!std::isfinite(stats_rate_hz) || stats_rate_hz <= 0.0) {
     throw InputError("--stats-rate must be > 0");
   }
-  if (queue_capacity == 0) throw InputError("--queue must be at least 1 frame");
+  constexpr std::size_t kMaxQueueFrames = 10'000;  // far beyond use; a typo is refused
+  if (queue_capacity < 1 || queue_capacity > kMaxQueueFrames) {
+    throw InputError("--queue must be 1 to " + std::to_string(kMaxQueueFrames) + " frames, not " +
+                     std::to_string(queue_capacity));
+  }
+  requireNumber(change_threshold_voxels, "--change-threshold", "voxels", 0.0, false);
+  requireNumber(change_min_weight, "--change-min-weight", "frames", 0.0, false);
   if (!std::isfinite(esdf_slice_z_m)) throw InputError("--slice-z must be finite");
   if (!std::isfinite(save_every_s) || save_every_s < 0.0) {
     throw InputError("--save-every must be a finite number of seconds >= 0 (0: no timed saves)");
@@ -53,23 +60,31 @@ void addMapperOptions(CLI::App& app, MapperOptions& o) {
          "Map file: resumed at start when it exists; written on SAVE_MAP without a path and on "
          "SIGINT/SIGTERM ('' = none)")
       ->capture_default_str();
-  app.add_option("--voxel-size", o.map.voxel_size_m, "Voxel edge, metres")->capture_default_str();
+  app.add_option("--voxel-size", o.map.voxel_size_m, "Voxel edge, metres")
+      ->check(finiteNumber())
+      ->capture_default_str();
   app.add_option("--max-depth", o.map.max_depth_m, "Ignore depth beyond, metres")
+      ->check(finiteNumber())
       ->capture_default_str();
   app.add_flag_callback(
       "--no-free-space", [&o] { o.map.allocate_free_space = false; },
       "Allocate only the surfaces' band (the ESDF then ends there)");
   app.add_option("--mesh-rate", o.mesh_rate_hz, "Mesh updates per second (<= 0: after every frame)")
+      ->check(finiteNumber())
       ->capture_default_str();
   app.add_option("--esdf-rate", o.esdf_rate_hz, "ESDF slices per second (0: no ESDF)")
+      ->check(finiteNumber())
       ->capture_default_str();
   app.add_option("--slice-z", o.esdf_slice_z_m, "Height of the ESDF slice, metres")
+      ->check(finiteNumber())
       ->capture_default_str();
   app.add_option("--stats-rate", o.stats_rate_hz, "Least map_stats_t messages per second")
+      ->check(finiteNumber())
       ->capture_default_str();
   app.add_option("--save-every", o.save_every_s,
                  "Save the map to --map every this many seconds while fusing (0: only on "
                  "SAVE_MAP and on exit)")
+      ->check(finiteNumber())
       ->capture_default_str();
   app.add_option("--queue", o.queue_capacity, "Frames waiting to be fused (oldest dropped)")
       ->capture_default_str();
@@ -78,9 +93,11 @@ void addMapperOptions(CLI::App& app, MapperOptions& o) {
       "No change detection (no change events; about half the device work)");
   app.add_option("--change-threshold", o.change_threshold_voxels,
                  "Change detection: distance difference that counts as change, voxels")
+      ->check(finiteNumber())
       ->capture_default_str();
   app.add_option("--change-min-weight", o.change_min_weight,
                  "Change detection: frames that must see a voxel before it counts as observed")
+      ->check(finiteNumber())
       ->capture_default_str();
   app.add_flag_callback(
       "--no-objects", [&o] { o.object_database = false; },

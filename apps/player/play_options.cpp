@@ -3,21 +3,32 @@
 #include <CLI/CLI.hpp>
 #include <cmath>
 
+#include "cli/option_checks.h"
 #include "strata/core/error.h"
 
 namespace strata::apps {
 
+// Limits of the counts: far beyond a real replay, low enough that a typo is refused before a
+// camera path of that many poses is made (--sim-frames 1000000000 ran for minutes).
+constexpr long long kMaxFrameIndex = 100'000'000;
+constexpr long long kMaxSimFrames = 1'000'000;  // 9 hours at 30 Hz
+constexpr long long kMaxWindow = 10'000;
+constexpr double kMaxRate = 1000.0;              // times real time
+constexpr double kMaxMapperTimeout_s = 86400.0;  // a day
+
 void PlayOptions::validate() const {
   if (dataset.empty()) throw InputError("no dataset: pass a TUM folder or sim:WORLD[:SESSION]");
-  if (!std::isfinite(rate) || rate < 0.0) throw InputError("--rate must be >= 0 (0: flow control)");
-  if (window < 1) throw InputError("--window must be at least 1 frame");
-  if (first < 0 || frames < 0 || stride < 1 || sim_frames < 0) {
-    throw InputError("--first, --frames and --sim-frames must be >= 0, --stride >= 1");
-  }
+  requireNumberIn(rate, "--rate", "times real time; 0: flow control", 0.0, kMaxRate);
+  requireCount(window, "--window", 1, kMaxWindow);
+  requireCount(first, "--first", 0, kMaxFrameIndex);
+  requireCount(frames, "--frames", 0, kMaxFrameIndex);
+  requireCount(stride, "--stride", 1, kMaxFrameIndex);
+  requireCount(sim_frames, "--sim-frames", 0, kMaxSimFrames);
   if (encoding.depth != "depth16" && encoding.depth != "depth32f") {
     throw InputError("--depth-encoding must be depth16 or depth32f");
   }
-  if (!(mapper_timeout_s > 0.0)) throw InputError("--mapper-timeout must be > 0");
+  requireNumber(mapper_timeout_s, "--mapper-timeout", "seconds", 0.0, false);
+  requireNumberIn(mapper_timeout_s, "--mapper-timeout", "seconds", 0.0, kMaxMapperTimeout_s);
   if (with_stereo && rate == 0.0) {
     throw InputError(
         "--with-stereo needs --rate > 0 (a VIO takes the grey stream at its pace; "
@@ -35,6 +46,7 @@ void addPlayOptions(CLI::App& app, PlayOptions& o) {
       ->capture_default_str();
   app.add_option("--rate", o.rate,
                  "Speed relative to the recording; 0: as fast as the mapper fuses (flow control)")
+      ->check(finiteNumber())
       ->capture_default_str();
   app.add_option("--window", o.window, "Flow control: frames sent but not yet fused")
       ->capture_default_str();
@@ -69,6 +81,7 @@ void addPlayOptions(CLI::App& app, PlayOptions& o) {
                  "After the last frame, ask the mapper to save its map here");
   app.add_option("--mapper-timeout", o.mapper_timeout_s,
                  "Seconds to wait for the mapper's stats and replies")
+      ->check(finiteNumber())
       ->capture_default_str();
   app.add_option("--camera-id", o.camera_id)->capture_default_str();
   app.add_option("--rgbd-channel", o.rgbd_channel)->capture_default_str();

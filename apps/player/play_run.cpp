@@ -237,6 +237,7 @@ int play(const PlayOptions& options, lcm::LCM& lcm) {
         options.dataset.c_str(), s.bytes / 1e6, s.seconds);
     return 0;
   }
+  if (options.with_stereo) mav0Folder(options);  // before the frames are read
   Player player(options, lcm);
   player.play();
   const bool confirmed = player.finish();

@@ -5,7 +5,6 @@
 #include "strata/core/error.h"
 
 namespace strata::apps {
-namespace {
 
 std::string mav0Folder(const PlayOptions& options) {
   const std::filesystem::path mav0 = std::filesystem::path(options.dataset) / "mav0";
@@ -15,8 +14,6 @@ std::string mav0Folder(const PlayOptions& options) {
   }
   return mav0.string();
 }
-
-}  // namespace
 
 GreyInterleave::GreyInterleave(const PlayOptions& options, lcm::LCM& lcm)
     : stream_(mav0Folder(options), options, lcm), events_(stream_.dataset().events()) {}

@@ -12,11 +12,16 @@
 #include <functional>
 #include <lcm/lcm-cpp.hpp>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "player/play_euroc.h"
 
 namespace strata::apps {
+
+/// The mav0/ folder of options.dataset; InputError naming the dataset when it has none (checked
+/// by play() before the dataset is read).
+std::string mav0Folder(const PlayOptions& options);
 
 class GreyInterleave {
  public:

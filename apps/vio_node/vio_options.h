@@ -40,6 +40,7 @@ struct VioOptions {
   /// JSON summary written atomically at exit; "": none.
   std::string summary_path;
   bool quiet = false;
+  bool solver_log = false;  // the solver's own log on stderr (odometry/solver_log.h)
 
   /// Throws InputError naming the bad option.
   void validate() const;

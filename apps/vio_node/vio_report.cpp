@@ -21,6 +21,7 @@ std::int64_t imuSkipped(const VioSnapshot& s) {
   const VioCounters& c = s.counters;
   return c.imu_corrupt + c.imu_nonfinite + c.imu_dropped_backlog +
          static_cast<std::int64_t>(s.pipeline.imu_nonfinite_skipped +
+                                   s.pipeline.imu_out_of_range_skipped +
                                    s.pipeline.imu_out_of_order_skipped);
 }
 
@@ -51,6 +52,7 @@ Json imuSkippedJson(const VioSnapshot& s) {
   j["corrupt"] = s.counters.imu_corrupt;
   j["nonfinite"] =
       s.counters.imu_nonfinite + static_cast<std::int64_t>(s.pipeline.imu_nonfinite_skipped);
+  j["out_of_range"] = s.pipeline.imu_out_of_range_skipped;
   j["out_of_order"] = s.pipeline.imu_out_of_order_skipped;
   j["backlog"] = s.counters.imu_dropped_backlog;
   return j;
@@ -73,6 +75,28 @@ std::string vioStatusLine(const VioSnapshot& s, double frames_per_s) {
     line << "; initialising: " << s.initialising_reason;
   }
   return line.str();
+}
+
+int vioVerdict(const VioSnapshot& s, std::string* message) {
+  const odometry::PipelineStats& p = s.pipeline;
+  message->clear();
+  char line[400];
+  if (p.imu_out_of_range_skipped > 0) {
+    std::snprintf(line, sizeof(line),
+                  "strata-vio: %zu IMU samples beyond any IMU's range (|gyro| > %.0f rad/s or "
+                  "|accel| > %.0f m/s^2) were skipped: are the IMU's units or scale wrong?\n",
+                  p.imu_out_of_range_skipped, odometry::kMaxImuAngularRate_rad_s,
+                  odometry::kMaxImuAcceleration_mps2);
+    *message += line;
+  }
+  if (p.frames_processed == 0 || p.frames_tracking > 0) return 0;
+  const std::string why = !s.last_failure.empty() ? "the last failure: " + s.last_failure
+                          : !s.initialising_reason.empty()
+                              ? "never initialised: " + s.initialising_reason
+                              : std::string("never initialised");
+  *message += "strata-vio: " + std::to_string(p.frames_processed) +
+              " frames processed and none tracked (" + why + "); no pose was published\n";
+  return 3;
 }
 
 std::string vioSummaryJson(const VioSnapshot& s, const std::string& calibration_dir) {

@@ -38,6 +38,11 @@ struct VioSnapshot {
 /// IMU in and skipped, and `frames_per_s` (measured by the caller over its own period).
 std::string vioStatusLine(const VioSnapshot& s, double frames_per_s);
 
+/// The verdict on a stopped run: 0, or 3 when frames were processed and none was tracked (no
+/// trajectory came out: absurd IMU, no texture, a wrong calibration). `message` gets the lines to
+/// print ("" when none): that one, and a warning when IMU samples no IMU could give were skipped.
+int vioVerdict(const VioSnapshot& s, std::string* message);
+
 /// The summary as JSON text (ends with a newline).
 std::string vioSummaryJson(const VioSnapshot& s, const std::string& calibration_dir);
 

@@ -133,6 +133,11 @@ std::vector<PipelineFrame> VioPipeline::pushImu(const euroc::ImuSample& sample) 
     ++stats_.imu_nonfinite_skipped;
     return {};
   }
+  if (sample.gyro_rad_s.norm() > kMaxImuAngularRate_rad_s ||
+      sample.accel_mps2.norm() > kMaxImuAcceleration_mps2) {
+    ++stats_.imu_out_of_range_skipped;
+    return {};
+  }
   if (!imu_.empty() && sample.timestamp_ns <= imu_.back().timestamp_ns) {
     ++stats_.imu_out_of_order_skipped;
     return {};

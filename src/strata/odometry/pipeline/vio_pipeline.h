@@ -84,9 +84,15 @@ struct PipelineFrame {
   double backend_ms = 0.0;   // wall time of the back end
 };
 
+/// IMU readings beyond these no IMU a robot carries measures (the widest MEMS ranges are about
+/// +-4000 deg/s, 70 rad/s, and +-200 g, 1960 m/s^2): such a sample is corrupt and is skipped.
+inline constexpr double kMaxImuAngularRate_rad_s = 70.0;
+inline constexpr double kMaxImuAcceleration_mps2 = 1960.0;
+
 struct PipelineStats {
   std::size_t imu_samples = 0;            // accepted
   std::size_t imu_nonfinite_skipped = 0;  // NaN/inf values
+  std::size_t imu_out_of_range_skipped = 0;  // beyond kMaxImuAngularRate / kMaxImuAcceleration
   std::size_t imu_out_of_order_skipped = 0;
   std::size_t frames_in = 0;  // pushed
   std::size_t frames_processed = 0;
