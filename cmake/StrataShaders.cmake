@@ -55,5 +55,7 @@ ${entries}  };
 }  // namespace strata::shaders
 ")
   add_library(${target} STATIC ${generated_sources} "${registry}")
+  # As every library: linkable into shared objects (the Python module).
+  set_target_properties(${target} PROPERTIES POSITION_INDEPENDENT_CODE ON)
   target_include_directories(${target} PRIVATE "${PROJECT_SOURCE_DIR}/src")
 endfunction()

@@ -17,5 +17,8 @@ while (($#)); do
     *) cmake_args+=("$1"); shift ;;
   esac
 done
+# The Python package is built for Debian's interpreter (python3-dev, pybind11-dev, numpy are its
+# packages), not for another python3 that may come first on PATH (pyenv).
+if [ -x /usr/bin/python3 ]; then cmake_args=(-DPython_EXECUTABLE=/usr/bin/python3 "${cmake_args[@]}"); fi
 cmake -S "$ROOT" -B "$ROOT/build" -G Ninja -DCMAKE_BUILD_TYPE=Release "${cmake_args[@]}"
 cmake --build "$ROOT/build" -j "$(nproc)" "${targets[@]}"

@@ -16,6 +16,7 @@ PACKAGES=(
   libhnswlib-dev
   libpcl-dev
   libompl-dev
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib
 )
 missing=()
 for p in "${PACKAGES[@]}"; do
