@@ -177,7 +177,7 @@ CLI::App* addTrackCommand(CLI::App& app, TrackBenchOptions& o) {
                     "Pyramid level the model is raycast at (default: TrackConfig's)");
   track
       ->add_option("--iterations", o.iterations,
-                   "Gauss-Newton iterations per level, coarsest first (sets the level count)")
+                   "Gauss-Newton iterations per level, the finest level first (sets the level count)")
       ->delimiter(',');
   return track;
 }

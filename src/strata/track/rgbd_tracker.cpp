@@ -1,13 +1,14 @@
-#include "strata/core/clock.h"
 #include "strata/track/rgbd_tracker.h"
 
 #include <chrono>
 #include <cmath>
 #include <sstream>
 
+#include "strata/core/clock.h"
 #include "strata/track/depth_filter.h"
 #include "strata/track/gauss_newton.h"
 #include "strata/track/live_pyramid.h"
+#include "strata/track/photometric.h"
 
 namespace strata {
 namespace {
@@ -57,8 +58,7 @@ TrackResult RgbdTracker::track(DeviceTsdfMap& map, int tsdf_layer, const RgbdFra
   validateFrame(frame, intrinsics);
   validatePose(T_W_C_guess, "tracking guess");
   const auto finish = [&](TrackResult result) {
-    result.wall_ms =
-        msSince(start);
+    result.wall_ms = msSince(start);
     return result;
   };
 
@@ -73,7 +73,24 @@ TrackResult RgbdTracker::track(DeviceTsdfMap& map, int tsdf_layer, const RgbdFra
   raycast_options.tsdf_layer = tsdf_layer;
   const CameraIntrinsics& model_intrinsics =
       pyramid[static_cast<std::size_t>(config_.model_level)].intrinsics;
-  const double raycast_ms = raycast_.render(map, model_intrinsics, T_W_C_guess, raycast_options);
+  const double color_weight = config_.color_weight;
+  const bool photometric = color_weight > 0.0 && !frame.color.empty();
+  double raycast_ms = 0.0;
+  IntensityModel model_intensity;
+  std::vector<IntensityImage> live_intensity;
+  if (photometric) {
+    const RaycastImage model =
+        raycast_.run(map, model_intrinsics, T_W_C_guess, raycast_options, &raycast_ms);
+    model_intensity = intensityModel(model, model_intrinsics, T_W_C_guess);
+    live_intensity.push_back(intensityOf(frame.color));
+    for (int l = 1; l < config_.levels; ++l) {
+      live_intensity.push_back(halfIntensity(live_intensity.back()));
+    }
+  } else {
+    raycast_ms = raycast_.render(map, model_intrinsics, T_W_C_guess, raycast_options);
+  }
+  PhotometricGates photo_gates;
+  photo_gates.max_distance_m = config_.max_distance_m;
   const std::size_t pixels =
       static_cast<std::size_t>(model_intrinsics.width_px) * model_intrinsics.height_px;
   if (countHits(raycast_.normalBuffer(), pixels) < config_.min_inliers) {
@@ -92,7 +109,14 @@ TrackResult RgbdTracker::track(DeviceTsdfMap& map, int tsdf_layer, const RgbdFra
   double ms = 0.0;
   for (int level = config_.levels - 1; level >= 0; --level) {
     for (int i = 0; i < config_.iterations[static_cast<std::size_t>(level)]; ++i) {
-      const NormalEquations sums = equations_.run(level, T_W_C, gates, &ms);
+      NormalEquations sums = equations_.run(level, T_W_C, gates, &ms);
+      if (photometric) {
+        sums = addWeighted(sums,
+                           photometricEquations(pyramid[static_cast<std::size_t>(level)],
+                                                live_intensity[static_cast<std::size_t>(level)],
+                                                model_intensity, T_W_C, photo_gates),
+                           color_weight);
+      }
       result.equations_ms += ms;
       ++result.iterations;
       const GaussNewtonStep step = solveGaussNewton(sums, config_.min_eigenvalue);
@@ -101,8 +125,15 @@ TrackResult RgbdTracker::track(DeviceTsdfMap& map, int tsdf_layer, const RgbdFra
       if (step.xi.norm() < config_.convergence_update) break;
     }
   }
-  // The figures of the final pose (the failure rules judge these).
+  // The figures of the final pose (the failure rules judge these; the conditioning with the
+  // photometric rows, which constrain what the geometry leaves loose).
   const NormalEquations final_sums = equations_.run(0, T_W_C, gates, &ms);
+  const NormalEquations final_system =
+      photometric ? addWeighted(final_sums,
+                                photometricEquations(pyramid[0], live_intensity[0], model_intensity,
+                                                     T_W_C, photo_gates),
+                                color_weight)
+                  : final_sums;
   result.equations_ms += ms;
   result.T_W_C = T_W_C;
   result.inliers = final_sums.inliers;
@@ -110,7 +141,7 @@ TrackResult RgbdTracker::track(DeviceTsdfMap& map, int tsdf_layer, const RgbdFra
   result.inlier_fraction = static_cast<double>(final_sums.inliers) / pyramid[0].valid;
   result.rms_m =
       final_sums.inliers > 0 ? std::sqrt(final_sums.residual_sq / final_sums.inliers) : 0.0;
-  result.min_eigenvalue = solveGaussNewton(final_sums).min_eigenvalue;
+  result.min_eigenvalue = solveGaussNewton(final_system).min_eigenvalue;
   judge(T_W_C_guess, &result);
   return finish(result);
 }

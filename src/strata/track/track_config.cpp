@@ -27,6 +27,7 @@ void TrackConfig::validate() const {
   require(max_normal_angle_deg > 0.0f && max_normal_angle_deg < 90.0f,
           "max_normal_angle_deg must be in (0, 90)");
   require(huber_m >= 0.0f, "huber_m must be >= 0");
+  require(std::isfinite(color_weight) && color_weight >= 0.0, "color_weight must be >= 0");
   require(convergence_update >= 0.0, "convergence_update must be >= 0");
   require(min_inlier_fraction >= 0.0 && min_inlier_fraction <= 1.0,
           "min_inlier_fraction must be in [0, 1]");

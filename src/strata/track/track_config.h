@@ -12,7 +12,8 @@ struct TrackConfig {
   /// Pyramid levels of the live depth (level l has 2^-l the resolution). More levels widen the
   /// basin of convergence; each level costs one pass of iterations.
   int levels = 3;
-  /// Gauss-Newton iterations per level, coarsest first (size must equal `levels`).
+  /// Gauss-Newton iterations per level, indexed by level: [0] the finest (size must equal
+  /// `levels`); levels run coarsest first.
   std::vector<int> iterations{4, 5, 10};
   /// The model is raycast at the resolution of this pyramid level (0: the frame's; 1: half, a
   /// quarter of the rays). The raycast is the costliest step; every live level associates with it.
@@ -33,6 +34,12 @@ struct TrackConfig {
   /// Huber threshold on |r|: residuals beyond it are down-weighted by huber_m / |r| (0: plain
   /// least squares). About twice the depth noise.
   float huber_m = 0.01f;
+  /// Weight of the photometric term (photometric.h) beside the point-to-plane one: an intensity
+  /// residual (0..1) times this counts as a point-to-plane residual in metres. 0, or a frame
+  /// without colour: geometry alone. 1 reaches the figures of docs/track.md (a SUN3D fragment
+  /// whose geometry cannot tell a rotation from a sideways step drifted 99 mm without it, 13 mm
+  /// with it).
+  double color_weight = 1.0;
   /// The iterations of a level stop when the update is smaller than this (translation metres +
   /// rotation radians, 2-norm).
   double convergence_update = 1e-6;
@@ -44,8 +51,9 @@ struct TrackConfig {
   std::uint32_t min_inliers = 200;
   /// RMS of the inliers' residuals at the finest level.
   double max_rms_m = 0.03;
-  /// Smallest eigenvalue of JᵀJ / inliers (J rows [n, p × n], camera frame, metres): below it
-  /// the geometry does not constrain all six degrees of freedom (a plane, a corridor).
+  /// Smallest eigenvalue of JᵀJ / inliers (J rows [n, p × n], camera frame, metres; with the
+  /// photometric term its weighted rows too): below it geometry and texture together do not
+  /// constrain all six degrees of freedom (a bare plane, a blank corridor).
   double min_eigenvalue = 1e-4;
   /// Largest accepted difference between the result and the guess.
   double max_translation_jump_m = 0.2;
