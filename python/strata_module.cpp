@@ -27,6 +27,8 @@
 #include "strata/mesh/mesh.h"
 #include "strata/odometry/pipeline/vio_pipeline.h"
 #include "strata/odometry/pipeline/vio_replay.h"
+#include "strata/sim/sim_setup.h"
+#include "strata/sim/world/world_paths.h"
 #include "strata/trajectory/trajectory_error.h"
 #include "strata/vk/vk.h"
 
@@ -268,18 +270,23 @@ void bindConfigs(py::module_& m) {
       .def("__repr__", [](const MapConfig& c) { return reprOf("MapConfig", c.describe()); });
 
   py::class_<MapperConfig>(m, "MapperConfig", "What a Mapper keeps (mapper/mapper_config.h).")
-      .def(py::init(
-               [](const MapConfig& map, bool esdf, bool change_detection, bool keyframe_scoring) {
-                 MapperConfig c;
-                 c.map = map;
-                 c.esdf = esdf;
-                 c.change_detection = change_detection;
-                 c.keyframe_scoring = keyframe_scoring;
-                 c.map.validate();
-                 return c;
-               }),
+      .def(py::init([](const MapConfig& map, bool esdf, bool change_detection,
+                       bool keyframe_scoring, double recorded_per_fused) {
+             MapperConfig c;
+             c.map = map;
+             c.esdf = esdf;
+             c.change_detection = change_detection;
+             c.keyframe_scoring = keyframe_scoring;
+             c.change = c.change.forSubsampling(recorded_per_fused);
+             c.map.validate();
+             return c;
+           }),
            py::arg("map") = MapConfig{}, py::arg("esdf") = false,
-           py::arg("change_detection") = false, py::arg("keyframe_scoring") = false)
+           py::arg("change_detection") = false, py::arg("keyframe_scoring") = false,
+           py::arg("recorded_per_fused") = 1.0,
+           "recorded_per_fused: for change detection on sessions fused from every n-th frame of "
+           "a 30 Hz recording (or frames spread over a path): each fused frame stands for n views "
+           "(ChangeConfig::forSubsampling).")
       .def_readwrite("map", &MapperConfig::map)
       .def_readwrite("esdf", &MapperConfig::esdf)
       .def_readwrite("change_detection", &MapperConfig::change_detection)
@@ -449,9 +456,16 @@ void bindMapper(py::module_& m) {
 class PyDataset {
  public:
   explicit PyDataset(const std::string& path) : dataset_(openDataset(path)) {}
+  explicit PyDataset(std::unique_ptr<Dataset> dataset) : dataset_(std::move(dataset)) {}
   std::size_t size() const { return dataset_->size(); }
   CameraIntrinsics intrinsics() const { return dataset_->intrinsics(); }
   std::string name() const { return dataset_->name(); }
+  /// Frames of the whole recording the dataset's frames were drawn from (a simulated session's
+  /// path at its rate); size() for other datasets.
+  std::size_t recordedFrames() const {
+    const auto* sim = dynamic_cast<const sim::SimSessionDataset*>(dataset_.get());
+    return sim ? sim->recordedFrames() : size();
+  }
   py::dict frame(std::ptrdiff_t index) const {
     const auto n = static_cast<std::ptrdiff_t>(size());
     if (index < 0) index += n;
@@ -492,6 +506,8 @@ void bindIo(py::module_& io) {
       .def("__getitem__", &PyDataset::frame, py::arg("index"))
       .def_property_readonly("intrinsics", &PyDataset::intrinsics)
       .def_property_readonly("name", &PyDataset::name)
+      .def_property_readonly("recorded_frames", &PyDataset::recordedFrames,
+                             "Frames of the whole recording (a simulated path at its rate)")
       .def("__repr__", [](const PyDataset& d) {
         return "Dataset(" + d.name() + ", " + std::to_string(d.size()) + " frames)";
       });
@@ -646,6 +662,23 @@ VioRun runEuroc(const std::string& folder, bool mono, std::size_t frames, int wi
   return run;
 }
 
+void bindSim(py::module_& s) {
+  s.def(
+      "session",
+      [](const std::string& world, int session, int frames, double rate_hz, bool noise) {
+        const auto loaded = sim::loadWorld(sim::findWorld(world), 0, 0);
+        if (frames < 0) throw InputError("frames must be >= 0 (0: every frame of the path)");
+        auto dataset = std::make_unique<sim::SimSessionDataset>(
+            loaded, session, sim::sessionConfig(rate_hz, frames, noise, false));
+        return std::make_unique<PyDataset>(std::move(dataset));
+      },
+      py::arg("world") = "room", py::arg("session") = 0, py::arg("frames") = 30,
+      py::arg("rate_hz") = 30.0, py::arg("noise") = true,
+      "A simulated session of a world (a shipped name: room, office, warehouse, deadend, or a "
+      "world file) as a Dataset: `frames` frames spread over the session's path (0: all at "
+      "rate_hz), rendered when indexed, with the simulator's depth noise unless noise=False.");
+}
+
 void bindOdometry(py::module_& o) {
   py::class_<VioRun>(o, "VioRun", "What run_euroc gives: the left camera's trajectory and counts.")
       .def_readonly("stereo", &VioRun::stereo)
@@ -695,6 +728,8 @@ PYBIND11_MODULE(_strata, m) {
   bindIo(io);
   py::module_ trajectory = m.def_submodule("trajectory", "Trajectory accuracy (ATE, RPE)");
   bindTrajectory(trajectory);
+  py::module_ sim = m.def_submodule("sim", "The simulator's worlds and sessions");
+  bindSim(sim);
   py::module_ odometry = m.def_submodule("odometry", "Visual-inertial odometry");
   bindOdometry(odometry);
   m.def("validation_errors", &vk::validationErrorCount,

@@ -27,6 +27,7 @@ from ._strata import (  # noqa: F401 (re-exported)
     Mesh,
     io,
     odometry,
+    sim,
     trajectory,
     validation_errors,
 )
@@ -35,8 +36,9 @@ from ._strata import (  # noqa: F401 (re-exported)
 _sys.modules[__name__ + ".io"] = io
 _sys.modules[__name__ + ".trajectory"] = trajectory
 _sys.modules[__name__ + ".odometry"] = odometry
+_sys.modules[__name__ + ".sim"] = sim
 
 __all__ = [
     "CameraIntrinsics", "DeviceError", "DiscoveredObject", "Error", "InputError", "MapConfig",
-    "Mapper", "MapperConfig", "Mesh", "io", "odometry", "trajectory", "validation_errors",
+    "Mapper", "MapperConfig", "Mesh", "io", "odometry", "sim", "trajectory", "validation_errors",
 ]

@@ -229,9 +229,10 @@ def test_the_examples_run_and_draw(tmp_path):
     runs = {
         "fuse_kitchen.py": ["--data", KITCHEN],
         "vio_euroc.py": ["--data", os.path.join(DATA, "euroc_v101_micro")],
+        "room_objects.py": ["--frames", "30"],
     }
     for script, args in runs.items():
-        if not os.path.isdir(args[1]):
+        if args[0] == "--data" and not os.path.isdir(args[1]):
             pytest.skip(f"{args[1]} is absent")
         out = tmp_path / (script[:-3] + ".png")
         result = subprocess.run([sys.executable, os.path.join(examples, script), *args,
@@ -239,3 +240,17 @@ def test_the_examples_run_and_draw(tmp_path):
         assert result.returncode == 0, result.stderr
         assert out.stat().st_size > 10000, script
         assert "wrote" in result.stdout, result.stdout
+
+
+def test_a_simulated_session_as_arrays():
+    data = strata.sim.session("room", 1, frames=5, noise=False)
+    assert len(data) == 5 and data.recorded_frames > 5
+    frame = data[2]
+    assert frame["depth"].dtype == np.float32
+    assert frame["depth"].shape == (data.intrinsics.height, data.intrinsics.width)
+    assert frame["color"].shape == (data.intrinsics.height, data.intrinsics.width, 3)
+    assert np.isfinite(frame["T_W_C"]).all()
+    with pytest.raises(strata.InputError, match="nowhere"):
+        strata.sim.session("nowhere")
+    with pytest.raises(strata.InputError):
+        strata.sim.session("room", 99)
