@@ -271,11 +271,8 @@ int runOdometry(const OdometryOptions& o) {
       std::fprintf(stderr, "strata odometry: %s\n", solver.summary().c_str());
     }
     if (run.stats.imu_out_of_range_skipped > 0) {
-      std::fprintf(stderr,
-                   "strata odometry: %zu IMU samples beyond any IMU's range (|gyro| > %.0f rad/s "
-                   "or |accel| > %.0f m/s^2) were skipped: are the IMU's units or scale wrong?\n",
-                   run.stats.imu_out_of_range_skipped, odometry::kMaxImuAngularRate_rad_s,
-                   odometry::kMaxImuAcceleration_mps2);
+      std::fprintf(stderr, "strata odometry: %s\n",
+                   odometry::imuOutOfRangeWarning(run.stats.imu_out_of_range_skipped).c_str());
     }
     const auto write_summary = [&] {
       const std::string json = odometrySummaryJson(run);

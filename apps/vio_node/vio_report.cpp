@@ -80,14 +80,8 @@ std::string vioStatusLine(const VioSnapshot& s, double frames_per_s) {
 int vioVerdict(const VioSnapshot& s, std::string* message) {
   const odometry::PipelineStats& p = s.pipeline;
   message->clear();
-  char line[400];
   if (p.imu_out_of_range_skipped > 0) {
-    std::snprintf(line, sizeof(line),
-                  "strata-vio: %zu IMU samples beyond any IMU's range (|gyro| > %.0f rad/s or "
-                  "|accel| > %.0f m/s^2) were skipped: are the IMU's units or scale wrong?\n",
-                  p.imu_out_of_range_skipped, odometry::kMaxImuAngularRate_rad_s,
-                  odometry::kMaxImuAcceleration_mps2);
-    *message += line;
+    *message += "strata-vio: " + odometry::imuOutOfRangeWarning(p.imu_out_of_range_skipped) + "\n";
   }
   if (p.frames_processed == 0 || p.frames_tracking > 0) return 0;
   const std::string why = !s.last_failure.empty() ? "the last failure: " + s.last_failure

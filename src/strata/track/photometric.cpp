@@ -57,21 +57,29 @@ namespace {
 // depth edge.
 constexpr float kMaxEdgeShare = 0.02f;
 
-/// Bilinear sample of `values` at (u, v); false unless all four neighbours have depth.
-bool bilinear(const IntensityModel& m, const std::vector<float>& values, float u, float v,
-              float* out) {
+/// The four model pixels around (u, v) and their bilinear weights; false when one rendered no
+/// surface, lies outside the image's interior, or a depth edge runs between them (the colour
+/// there blends two surfaces).
+struct Footprint {
+  std::size_t i = 0;  // top-left pixel
+  float w00 = 0, w10 = 0, w01 = 0, w11 = 0;
+  float sample(const std::vector<float>& values, int width) const {
+    return w00 * values[i] + w10 * values[i + 1] + w01 * values[i + width] +
+           w11 * values[i + width + 1];
+  }
+};
+
+bool footprint(const IntensityModel& m, float u, float v, Footprint* out) {
   const int w = m.intrinsics.width_px, h = m.intrinsics.height_px;
   const int u0 = static_cast<int>(std::floor(u)), v0 = static_cast<int>(std::floor(v));
   if (u0 < 1 || v0 < 1 || u0 + 2 >= w || v0 + 2 >= h) return false;
-  const float a = u - u0, b = v - v0;
   const std::size_t i = static_cast<std::size_t>(v0) * w + u0;
   const float z[4] = {m.depth_m[i], m.depth_m[i + 1], m.depth_m[i + w], m.depth_m[i + w + 1]};
   const float z_min = std::min(std::min(z[0], z[1]), std::min(z[2], z[3]));
   const float z_max = std::max(std::max(z[0], z[1]), std::max(z[2], z[3]));
-  // No surface, or a depth edge between the four: the colour there blends two surfaces.
   if (z_min <= 0.0f || z_max - z_min > kMaxEdgeShare * z_min) return false;
-  *out = (1 - a) * (1 - b) * values[i] + a * (1 - b) * values[i + 1] + (1 - a) * b * values[i + w] +
-         a * b * values[i + w + 1];
+  const float a = u - u0, b = v - v0;
+  *out = Footprint{i, (1 - a) * (1 - b), a * (1 - b), (1 - a) * b, a * b};
   return true;
 }
 
@@ -98,14 +106,13 @@ NormalEquations photometricEquations(const LiveLevel& live, const IntensityImage
     if (p_M.z() <= 1e-3) continue;
     const double u = K.fx_px * p_M.x() / p_M.z() + K.cx_px;
     const double v = K.fy_px * p_M.y() / p_M.z() + K.cy_px;
-    float z_M = 0.0f, I_M = 0.0f, gu = 0.0f, gv = 0.0f;
-    const float uf = static_cast<float>(u), vf = static_cast<float>(v);
-    if (!bilinear(model, model.depth_m, uf, vf, &z_M)) continue;
-    if (std::fabs(z_M - p_M.z()) > gates.max_distance_m) continue;
-    if (!bilinear(model, model.intensity.value, uf, vf, &I_M) ||
-        !bilinear(model, model.grad_u, uf, vf, &gu) || !bilinear(model, model.grad_v, uf, vf, &gv))
-      continue;
+    Footprint f;
+    if (!footprint(model, static_cast<float>(u), static_cast<float>(v), &f)) continue;
+    const int width = K.width_px;
+    if (std::fabs(f.sample(model.depth_m, width) - p_M.z()) > gates.max_distance_m) continue;
+    const float gu = f.sample(model.grad_u, width), gv = f.sample(model.grad_v, width);
     if (std::hypot(gu, gv) < gates.min_gradient) continue;
+    const float I_M = f.sample(model.intensity.value, width);
     const double r = static_cast<double>(I_M) - intensity.value[p];
     // d pi / d p_M, times the gradient: a = (gu, gv) J_pi.
     const double iz = 1.0 / p_M.z();

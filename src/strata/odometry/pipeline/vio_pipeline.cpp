@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 
 #include "strata/core/error.h"
 #include "strata/odometry/so3.h"
@@ -121,6 +122,16 @@ VioPipeline::VioPipeline(const euroc::Calibration& calibration, VioPipelineConfi
 }
 
 VioPipeline::~VioPipeline() = default;
+
+std::string imuOutOfRangeWarning(std::size_t skipped) {
+  if (skipped == 0) return "";
+  char text[240];
+  std::snprintf(text, sizeof(text),
+                "%zu IMU samples beyond any IMU's range (|gyro| > %.0f rad/s or |accel| > %.0f "
+                "m/s^2) were skipped: are the IMU's units or scale wrong?",
+                skipped, kMaxImuAngularRate_rad_s, kMaxImuAcceleration_mps2);
+  return text;
+}
 
 VioStatus VioPipeline::status() const { return estimator_->status(); }
 

@@ -89,6 +89,10 @@ struct PipelineFrame {
 inline constexpr double kMaxImuAngularRate_rad_s = 70.0;
 inline constexpr double kMaxImuAcceleration_mps2 = 1960.0;
 
+/// The warning a program prints when `skipped` IMU samples were beyond those limits ("" for 0):
+/// "N IMU samples beyond any IMU's range (...) were skipped: are the IMU's units or scale wrong?".
+std::string imuOutOfRangeWarning(std::size_t skipped);
+
 struct PipelineStats {
   std::size_t imu_samples = 0;            // accepted
   std::size_t imu_nonfinite_skipped = 0;  // NaN/inf values

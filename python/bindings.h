@@ -1,0 +1,17 @@
+#pragma once
+// The Python package's bindings, one function per part of the module (strata_module.cpp calls
+// them in order: the configs before the Mapper that takes them).
+#include <pybind11/pybind11.h>
+
+namespace strata::python {
+
+namespace py = pybind11;
+
+void bindConfigs(py::module_& m);     // MapConfig, MapperConfig, CameraIntrinsics
+void bindMapper(py::module_& m);      // Mesh, DiscoveredObject, Mapper
+void bindIo(py::module_& io);         // Dataset
+void bindSim(py::module_& sim);       // session() -> Dataset
+void bindTrajectory(py::module_& t);  // evaluate, TrajectoryError
+void bindOdometry(py::module_& o);    // run_euroc, VioRun
+
+}  // namespace strata::python
