@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # README command 2 (what CI runs): install dependencies, build in Release with warnings as errors,
-# run every test on lavapipe with the Vulkan validation layer on, then the unit and device tests
-# under ASan + UBSan with staged device memory (the heavy device tests staged in the Release build),
-# and the fuzzers. Tests
+# run every test on lavapipe with the Vulkan validation layer on, the device tests again with
+# staged device memory, then a short list of unit and device test programs under ASan + UBSan, and
+# the fuzzers. Tests
 # needing ../shared/data skip without it. Ends with a table of every stage's time (also written to
 # build/stage-times.json). docs/build.md: what each stage costs and why.
 #
@@ -56,23 +56,26 @@ if ((QUICK)); then
   exit 0
 fi
 
-stage_plan install build tests staged-memory sanitizer-build sanitizer-tests fuzzing
+stage_plan install build unit-device acceptance staged-memory sanitizer-build sanitizer-tests fuzzing
 stage install "$ROOT/scripts/install-deps.sh"
 stage build "$ROOT/scripts/build.sh" "${CMAKE_ARGS[@]}"
 cd "$BUILD"
-# Everything but the quarter-hour runs labelled long (`ctest -L long` runs them; README "Tests").
-stage tests ctest --output-on-failure -j 2 --timeout 900 -LE long
+# The unit and device tests: each test program once, all its cases in one process, two programs
+# at a time, validation layer on (4.3 min here, against about 8 min as ctest's one process per
+# case: each case paid its program's start and its suite's shared set-up again). Then the
+# acceptance runs through ctest, everything but the quarter-hour runs labelled long (`ctest -L
+# long` runs them; README "Tests").
+stage unit-device "$ROOT/scripts/lib/run-test-programs.sh" "$BUILD" 'unit|device'
+stage acceptance ctest --output-on-failure -j 2 --timeout 900 -LE 'long|unit|device'
 # The path of a discrete GPU (device-local memory never mapped, every copy staged), tested on
-# lavapipe on every change: the device tests run staged under the sanitizers below, and here the
-# heavy ones the sanitizer stage leaves out (scripts/sanitizers/heavy-tests.txt), so every device
-# test runs once each way.
-heavy="$(grep -v '^#' "$ROOT/scripts/sanitizers/heavy-tests.txt" | grep . | paste -sd '|')"
-stage staged-memory env STRATA_DEVICE_MEMORY=staged \
-  ctest --output-on-failure -j 2 --timeout 900 -L device -R "^(${heavy})$"
-# Sanitizers: the libraries, the unit and device tests and the fuzzers built with clang, ASan +
-# UBSan (build-san/); those tests again under them, device memory staged (validation layer on; any
-# report fails). Then every parser of outside data fuzzed from its committed corpus within one time
-# budget. The acceptance runs are left to the build above. docs/reliability.md, docs/build.md.
+# lavapipe on every change: every device test program again with staged memory.
+stage staged-memory env STRATA_DEVICE_MEMORY=staged "$ROOT/scripts/lib/run-test-programs.sh" "$BUILD" device
+# Sanitizers: the fuzzers (which link every library) and the short list of test programs in
+# scripts/sanitizers/ci-programs.txt built with clang, ASan + UBSan (build-san/) and run under
+# them, device memory staged (validation layer on; any report fails). Then every parser of outside
+# data fuzzed from its committed corpus within one time budget. The whole unit and device suite
+# under the sanitizers is `STRATA_SANITIZE_ALL=1 scripts/sanitize.sh` (over an hour cold here, so
+# not in CI's 40 minutes). docs/reliability.md, docs/build.md.
 stage sanitizer-build "$ROOT/scripts/sanitize.sh" build
 stage sanitizer-tests env STRATA_DEVICE_MEMORY=staged "$ROOT/scripts/sanitize.sh" test
 stage fuzzing "$ROOT/scripts/fuzz.sh" --total "${STRATA_FUZZ_TOTAL_SECONDS:-120}"

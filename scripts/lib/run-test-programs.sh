@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
-# scripts/lib/run-test-programs.sh BUILD_DIR LABELS [EXCLUDE_FILE]: runs every test program of
-# BUILD_DIR whose label matches LABELS (an extended regex, e.g. 'unit|device'; from
+# scripts/lib/run-test-programs.sh BUILD_DIR LABELS [EXCLUDE_FILE [PROGRAMS_FILE]]: runs every test
+# program of BUILD_DIR whose label matches LABELS (an extended regex, e.g. 'unit|device'; from
 # BUILD_DIR/strata_tests.txt) once, all its test cases in one process, two programs at a time,
 # with the Vulkan validation layer on (a validation error fails the test case). Test cases named in
-# EXCLUDE_FILE (one per line, # comments) are filtered out. Each program's output goes to
+# EXCLUDE_FILE (one per line, # comments; "" for none) are filtered out. With PROGRAMS_FILE (program
+# names, one per line, # comments) only the programs it names run; a name it lists that the build
+# does not have is an error. Each program's output goes to
 # BUILD_DIR/test-programs/<name>.log; a failed program's tail is printed. Ends with
 # "N passed, N failed" (programs) and exits non-zero when any failed.
 #
@@ -14,6 +16,7 @@ set -euo pipefail
 BUILD="${1:?run-test-programs.sh: BUILD_DIR}"
 LABELS="${2:?run-test-programs.sh: LABELS}"
 EXCLUDE_FILE="${3:-}"
+PROGRAMS_FILE="${4:-}"
 LIST="$BUILD/strata_tests.txt"
 [[ -f "$LIST" ]] || { echo "run-test-programs.sh: no $LIST (configure with tests first)" >&2; exit 2; }
 TIMEOUT_S="${STRATA_TEST_PROGRAM_TIMEOUT_S:-1800}"
@@ -27,9 +30,18 @@ if [[ -n "$EXCLUDE_FILE" ]]; then
   [[ -n "$excluded" ]] && filter="-$excluded"
 fi
 
+wanted=""
+if [[ -n "$PROGRAMS_FILE" ]]; then
+  wanted="$(grep -v '^#' "$PROGRAMS_FILE" | grep . || true)"
+  for name in $wanted; do
+    grep -q "^$name " "$LIST" || { echo "run-test-programs.sh: $PROGRAMS_FILE names $name, which $LIST does not list" >&2; exit 2; }
+  done
+fi
+
 programs=()
 while read -r name label path; do
   [[ "$label" =~ ^(${LABELS})$ ]] || continue
+  [[ -z "$wanted" ]] || grep -qxF "$name" <<<"$wanted" || continue
   [[ -x "$path" ]] || { echo "run-test-programs.sh: $path is not built" >&2; exit 2; }
   programs+=("$name $path")
 done <"$LIST"
