@@ -95,7 +95,15 @@ VioRun runEuroc(const std::string& folder, bool mono, std::size_t frames, int wi
   odometry::ReplayInput input;
   input.imu = &dataset.imu();
   for (const auto& f : dataset.frames()) input.frame_timestamps_ns.push_back(f.timestamp_ns);
-  input.load = [&](std::size_t k) { return dataset.loadImages(k); };
+  // Ctrl-C: the replay asks for each frame's images here, so a pending signal (KeyboardInterrupt)
+  // stops it between frames, with the GIL taken just for the check.
+  input.load = [&](std::size_t k) {
+    {
+      py::gil_scoped_acquire gil;
+      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    }
+    return dataset.loadImages(k);
+  };
   input.max_frames = frames;
   odometry::ReplayResult result;
   {
@@ -218,7 +226,8 @@ void bindOdometry(py::module_& o) {
   o.def("run_euroc", &runEuroc, py::arg("folder"), py::arg("mono") = false, py::arg("frames") = 0,
         py::arg("window") = 10,
         "Visual-inertial odometry over an EuRoC/ASL folder (mav0/), as `strata odometry`: "
-        "frames > 0 processes only the first frames. The GIL is released while it runs.");
+        "frames > 0 processes only the first frames. The GIL is released while it runs; Ctrl-C "
+        "(a pending signal) stops it between frames.");
 }
 
 }  // namespace strata::python

@@ -11,58 +11,20 @@
 
 #include "bindings.h"
 #include "convert.h"
+#include "py_mapper.h"
 #include "strata/change/change_config.h"
 #include "strata/core/error.h"
 #include "strata/mapper/mapper.h"
-#include "strata/vk/vk.h"
 
 namespace strata::python {
 namespace {
 
-/// A Mapper with the device context it needs (the context outlives the mapper).
-class PyMapper {
- public:
-  PyMapper(const MapperConfig& config, const std::string& device) : context_(makeContext(device)) {
-    mapper_ = std::make_unique<Mapper>(config, *context_);
-  }
-  PyMapper(std::unique_ptr<vk::Context> context, std::unique_ptr<Mapper> mapper)
-      : context_(std::move(context)), mapper_(std::move(mapper)) {}
-
-  static std::unique_ptr<vk::Context> makeContext(const std::string& device) {
-    vk::ContextOptions options;
-    options.device_selector = device;
-    options.log_device = false;
-    return vk::Context::create(options);
-  }
-
-  Mapper& mapper() {
-    if (!mapper_) throw InputError("the mapper is closed");
-    return *mapper_;
-  }
-  void close() {
-    mapper_.reset();
-    context_.reset();
-  }
-
- private:
-  std::unique_ptr<vk::Context> context_;
-  std::unique_ptr<Mapper> mapper_;
-};
-
-/// `work(mapper)` with the GIL released (other Python threads run meanwhile); its result is
-/// returned once the GIL is held again.
-template <typename Work>
-auto withoutGil(PyMapper& self, Work work) {
-  Mapper& mapper = self.mapper();
-  py::gil_scoped_release release;
-  return work(mapper);
-}
-
-RgbdFrame frameFrom(const py::array& depth, const CameraIntrinsics& intrinsics,
-                    const py::object& color, double depth_scale) {
-  RgbdFrame frame;
-  frame.depth = depthFrom(depth, depth_scale);
-  frame.color = colorFrom(color);
+/// The mapper's frame buffer filled from the arrays and validated against the intrinsics.
+RgbdFrame& frameFrom(PyMapper& self, const py::array& depth, const CameraIntrinsics& intrinsics,
+                     const py::object& color, double depth_scale) {
+  RgbdFrame& frame = self.frameBuffer();
+  depthInto(depth, depth_scale, frame.depth);
+  colorInto(color, frame.color);
   validateFrame(frame, intrinsics);
   return frame;
 }
@@ -92,7 +54,8 @@ void bindConfigs(py::module_& m) {
       .def_readwrite("fy", &CameraIntrinsics::fy_px)
       .def_readwrite("cx", &CameraIntrinsics::cx_px)
       .def_readwrite("cy", &CameraIntrinsics::cy_px)
-      .def("validate", &CameraIntrinsics::validate)
+      .def("validate", &CameraIntrinsics::validate,
+           "Raises InputError naming a bad field (focal length, size); the constructor calls it.")
       .def("__repr__", [](const CameraIntrinsics& c) {
         std::ostringstream s;
         s << "width=" << c.width_px << ", height=" << c.height_px << ", fx=" << c.fx_px
@@ -125,7 +88,8 @@ void bindConfigs(py::module_& m) {
       .def_readwrite("min_depth_m", &MapConfig::min_depth_m)
       .def_readwrite("max_weight", &MapConfig::max_weight)
       .def_readwrite("allocate_free_space", &MapConfig::allocate_free_space)
-      .def("validate", &MapConfig::validate)
+      .def("validate", &MapConfig::validate,
+           "Raises InputError naming a bad field (after assigning one); the constructor calls it.")
       .def_static("for_change_detection", &change::changeMapConfig, py::arg("voxel_size_m"),
                   "The map change detection compares sessions on: constant weights (a voxel's "
                   "weight counts the frames that saw it) and observed free space.")
@@ -221,8 +185,9 @@ void bindMapper(py::module_& m) {
           "integrate",
           [](PyMapper& self, const py::array& depth, const CameraIntrinsics& intrinsics,
              const py::array& T_W_C, const py::object& color, double depth_scale) {
-            RgbdFrame frame = frameFrom(depth, intrinsics, color, depth_scale);
-            frame.T_W_C = poseFrom(T_W_C, "T_W_C");
+            const Eigen::Isometry3d pose = poseFrom(T_W_C, "T_W_C");
+            RgbdFrame& frame = frameFrom(self, depth, intrinsics, color, depth_scale);
+            frame.T_W_C = pose;
             return withoutGil(self,
                               [&](Mapper& m) { return m.integrate(frame, intrinsics).blocks; });
           },
@@ -235,7 +200,7 @@ void bindMapper(py::module_& m) {
           "track_and_integrate",
           [](PyMapper& self, const py::array& depth, const CameraIntrinsics& intrinsics,
              const py::object& color, double depth_scale) {
-            const RgbdFrame frame = frameFrom(depth, intrinsics, color, depth_scale);
+            const RgbdFrame& frame = frameFrom(self, depth, intrinsics, color, depth_scale);
             const TrackedFrame tracked =
                 withoutGil(self, [&](Mapper& m) { return m.trackAndIntegrate(frame, intrinsics); });
             return py::make_tuple(poseTo(tracked.track.T_W_C), tracked.fused, tracked.track.reason);
@@ -259,10 +224,14 @@ void bindMapper(py::module_& m) {
             const auto n = static_cast<py::ssize_t>(samples.size());
             py::array_t<float> distance(n), gradient({n, py::ssize_t{3}});
             py::array_t<bool> known(n);
+            auto d = distance.mutable_unchecked<1>();
+            auto g = gradient.mutable_unchecked<2>();
+            auto k = known.mutable_unchecked<1>();
             for (py::ssize_t i = 0; i < n; ++i) {
-              distance.mutable_at(i) = samples[i].distance_m;
-              known.mutable_at(i) = samples[i].status == EsdfStatus::kKnown;
-              for (int k = 0; k < 3; ++k) gradient.mutable_at(i, k) = samples[i].gradient[k];
+              const EsdfSample& sample = samples[static_cast<std::size_t>(i)];
+              d(i) = sample.distance_m;
+              k(i) = sample.status == EsdfStatus::kKnown;
+              for (int c = 0; c < 3; ++c) g(i, c) = sample.gradient[c];
             }
             return py::make_tuple(distance, gradient, known);
           },
@@ -303,15 +272,26 @@ void bindMapper(py::module_& m) {
           },
           py::arg("path"), "Writes the map atomically (.strata, versioned and checksummed).")
       .def("close", &PyMapper::close, "Frees the device memory now; later calls raise.")
-      .def_property_readonly("block_count",
-                             [](PyMapper& self) { return self.mapper().blockCount(); })
-      .def_property_readonly("frames_integrated",
-                             [](PyMapper& self) { return self.mapper().framesIntegrated(); })
-      .def_property_readonly("session_count",
-                             [](PyMapper& self) { return self.mapper().sessionCount(); })
-      .def_property_readonly("session_open",
-                             [](PyMapper& self) { return self.mapper().sessionOpen(); })
-      .def_property_readonly("config", [](PyMapper& self) { return self.mapper().config(); });
+      .def_property_readonly(
+          "block_count", [](PyMapper& self) { return self.mapper().blockCount(); },
+          "Allocated blocks of the map.")
+      .def_property_readonly(
+          "frames_integrated", [](PyMapper& self) { return self.mapper().framesIntegrated(); },
+          "Frames fused so far.")
+      .def_property_readonly(
+          "session_count", [](PyMapper& self) { return self.mapper().sessionCount(); },
+          "Sessions begun so far.")
+      .def_property_readonly(
+          "session_open", [](PyMapper& self) { return self.mapper().sessionOpen(); },
+          "Whether a session is open.")
+      .def_property_readonly(
+          "config", [](PyMapper& self) { return self.mapper().config(); },
+          "The MapperConfig the mapper runs with.")
+      .def_property_readonly("last_call_s", &PyMapper::lastCallSeconds,
+                             "Seconds the last library call of this mapper took (integrate, "
+                             "distance, ...), timed in C++ around the call alone: no array "
+                             "conversion, no Python. 0 before any call. For overhead "
+                             "measurements (bench/python/overhead.py).");
 }
 
 }  // namespace strata::python

@@ -13,5 +13,6 @@ void bindIo(py::module_& io);         // Dataset
 void bindSim(py::module_& sim);       // session() -> Dataset
 void bindTrajectory(py::module_& t);  // evaluate, TrajectoryError
 void bindOdometry(py::module_& o);    // run_euroc, VioRun
+void bindPlan(py::module_& p);        // plan, PlanResult
 
 }  // namespace strata::python

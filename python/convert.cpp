@@ -1,6 +1,7 @@
 #include "convert.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <sstream>
 
@@ -9,9 +10,21 @@
 namespace strata::python {
 namespace {
 
-using FloatArray = py::array_t<float, py::array::c_style | py::array::forcecast>;
+std::atomic<std::size_t> input_copies{0};
+
+/// `a` as a C-contiguous array of T: `a` itself when it is one (no copy), else a converted
+/// temporary, counted by inputCopies().
+template <typename T>
+py::array_t<T, py::array::c_style | py::array::forcecast> inPlace(const py::array& a) {
+  auto out = py::array_t<T, py::array::c_style | py::array::forcecast>::ensure(a);
+  if (!out) throw py::error_already_set();
+  if (out.data() != a.data()) ++input_copies;
+  return out;
+}
 
 }  // namespace
+
+std::size_t inputCopies() { return input_copies.load(); }
 
 std::string describe(const py::array& a) {
   std::ostringstream s;
@@ -21,48 +34,52 @@ std::string describe(const py::array& a) {
   return s.str();
 }
 
-/// Depth in metres from a float32 (metres) or uint16 (units of 1/depth_scale m) H x W array.
-DepthImage depthFrom(const py::array& depth, double depth_scale) {
+void depthInto(const py::array& depth, double depth_scale, DepthImage& out) {
   if (depth.ndim() != 2) {
     throw InputError("depth must be an H x W array (float32 metres or uint16), not " +
                      describe(depth));
   }
-  const int h = static_cast<int>(depth.shape(0)), w = static_cast<int>(depth.shape(1));
-  DepthImage out(w, h);
-  if (py::isinstance<py::array_t<std::uint16_t>>(depth)) {
-    if (!(depth_scale > 0.0) || !std::isfinite(depth_scale)) {
-      throw InputError(
-          "depth_scale must be a finite number > 0 (units per metre) for uint16 "
-          "depth, not " +
-          std::to_string(depth_scale));
-    }
-    const auto d = py::array_t<std::uint16_t, py::array::c_style | py::array::forcecast>(depth);
-    const std::uint16_t* p = d.data();
-    for (std::size_t i = 0; i < out.depth_m.size(); ++i) {
-      out.depth_m[i] = static_cast<float>(p[i] / depth_scale);
-    }
-    return out;
-  }
-  if (!py::isinstance<py::array_t<float>>(depth)) {
+  const bool metres = py::isinstance<py::array_t<float>>(depth);
+  if (!metres && !py::isinstance<py::array_t<std::uint16_t>>(depth)) {
     throw InputError("depth must be float32 (metres) or uint16 (with depth_scale), not " +
                      describe(depth));
   }
-  const FloatArray d(depth);
-  std::copy(d.data(), d.data() + out.depth_m.size(), out.depth_m.begin());
-  return out;
+  if (!metres && (!(depth_scale > 0.0) || !std::isfinite(depth_scale))) {
+    throw InputError(
+        "depth_scale must be a finite number > 0 (units per metre) for uint16 "
+        "depth, not " +
+        std::to_string(depth_scale));
+  }
+  out.height_px = static_cast<int>(depth.shape(0));
+  out.width_px = static_cast<int>(depth.shape(1));
+  out.depth_m.resize(static_cast<std::size_t>(depth.size()));  // keeps the buffer of a same size
+  if (metres) {
+    const auto d = inPlace<float>(depth);
+    std::copy(d.data(), d.data() + out.depth_m.size(), out.depth_m.begin());
+    return;
+  }
+  const auto d = inPlace<std::uint16_t>(depth);
+  const std::uint16_t* p = d.data();
+  for (std::size_t i = 0; i < out.depth_m.size(); ++i) {
+    out.depth_m[i] = static_cast<float>(p[i] / depth_scale);
+  }
 }
 
-ColorImage colorFrom(const py::object& color) {
-  if (color.is_none()) return {};
+void colorInto(const py::object& color, ColorImage& out) {
+  if (color.is_none()) {
+    out.width_px = out.height_px = 0;
+    out.rgb.clear();
+    return;
+  }
   const py::array a = py::array::ensure(color);
   if (!a || a.ndim() != 3 || a.shape(2) != 3 || !py::isinstance<py::array_t<std::uint8_t>>(a)) {
     throw InputError("color must be a uint8 H x W x 3 (RGB) array, not " +
                      (a ? describe(a) : std::string("a non-array")));
   }
-  const auto c = py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>(a);
-  ColorImage out(static_cast<int>(a.shape(1)), static_cast<int>(a.shape(0)));
-  std::copy(c.data(), c.data() + out.rgb.size(), out.rgb.begin());
-  return out;
+  const auto c = inPlace<std::uint8_t>(a);
+  out.height_px = static_cast<int>(a.shape(0));
+  out.width_px = static_cast<int>(a.shape(1));
+  out.rgb.assign(c.data(), c.data() + a.size());
 }
 
 Eigen::Isometry3d poseFrom(const py::array& pose, const char* what) {
@@ -92,10 +109,12 @@ std::vector<Eigen::Vector3f> pointsFrom(const py::array& points, const char* wha
   if (points.ndim() != 2 || points.shape(1) != 3) {
     throw InputError(std::string(what) + " must be an N x 3 array, not " + describe(points));
   }
-  const FloatArray p(points);
+  const auto a = inPlace<float>(points);
+  const auto p = a.unchecked<2>();
   std::vector<Eigen::Vector3f> out(static_cast<std::size_t>(points.shape(0)));
   for (std::size_t i = 0; i < out.size(); ++i) {
-    out[i] = Eigen::Vector3f(p.at(i, 0), p.at(i, 1), p.at(i, 2));
+    const auto r = static_cast<py::ssize_t>(i);
+    out[i] = Eigen::Vector3f(p(r, 0), p(r, 1), p(r, 2));
     if (!out[i].allFinite()) {
       throw InputError(std::string(what) + " row " + std::to_string(i) + " is not finite");
     }

@@ -3,6 +3,8 @@
 // depth float32 metres or uint16 with a scale, colour uint8 H x W x 3, poses 4 x 4 float64,
 // points N x 3, trajectories N x 8 in TUM order. Every *From throws InputError naming the
 // expected shape and dtype (or the row that is not finite) before anything is built.
+// Arrays in the dtype and C order the library reads are read in place; any other is converted
+// into a temporary first, which inputCopies() counts (depth, colour, points).
 // Thread safety: call with the GIL held.
 #include <pybind11/numpy.h>
 
@@ -20,10 +22,15 @@ namespace py = pybind11;
 
 /// The array's shape in words, for messages: "(480, 640) uint16".
 std::string describe(const py::array& a);
-/// Depth in metres from a float32 (metres) or uint16 (units of 1/depth_scale m) H x W array.
-DepthImage depthFrom(const py::array& depth, double depth_scale);
-/// uint8 H x W x 3, or None (empty).
-ColorImage colorFrom(const py::object& color);
+/// Depth in metres from a float32 (metres) or uint16 (units of 1/depth_scale m) H x W array,
+/// written into `out` (its buffer reused). NOTE: the pixels are copied once, into `out`: the
+/// library's RgbdFrame owns them.
+void depthInto(const py::array& depth, double depth_scale, DepthImage& out);
+/// uint8 H x W x 3, or None (empty), written into `out` (its buffer reused).
+void colorInto(const py::object& color, ColorImage& out);
+/// Input arrays converted into a temporary (another dtype, not C-contiguous) so far in this
+/// process: 0 more after a call with arrays in the library's dtype and order.
+std::size_t inputCopies();
 /// 4 x 4 camera to world, validated (validatePose).
 Eigen::Isometry3d poseFrom(const py::array& pose, const char* what);
 py::array_t<double> poseTo(const Eigen::Isometry3d& T);

@@ -6,6 +6,7 @@
 #include <pybind11/pybind11.h>
 
 #include "bindings.h"
+#include "convert.h"
 #include "strata/core/error.h"
 #include "strata/vk/vk.h"
 
@@ -18,6 +19,10 @@ PYBIND11_MODULE(_strata, m) {
   static py::exception<Error> error(m, "Error", PyExc_RuntimeError);
   static py::exception<InputError> input_error(m, "InputError", PyExc_ValueError);
   static py::exception<DeviceError> device_error(m, "DeviceError", error.ptr());
+  error.attr("__doc__") = "An error of the library (a RuntimeError), with its message.";
+  input_error.attr("__doc__") =
+      "Bad input (a ValueError): a wrong dtype, shape, value or file, refused before any work.";
+  device_error.attr("__doc__") = "The device failed or is full (a strata.Error).";
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
@@ -39,6 +44,12 @@ PYBIND11_MODULE(_strata, m) {
   bindSim(sim);
   py::module_ odometry = m.def_submodule("odometry", "Visual-inertial odometry");
   bindOdometry(odometry);
+  py::module_ plan = m.def_submodule("plan", "Path planning on a Mapper's ESDF");
+  bindPlan(plan);
+  m.def("input_copies", &inputCopies,
+        "Input arrays (depth, colour, points) the bindings converted into a temporary so far in "
+        "this process: another dtype or not C-contiguous. Arrays in the library's dtype and C "
+        "order are read in place and leave it unchanged.");
   m.def("validation_errors", &vk::validationErrorCount,
         "Vulkan validation errors reported so far in this process (STRATA_VALIDATION=1 turns the "
         "layer on); tests assert 0.");

@@ -25,8 +25,10 @@ from ._strata import (  # noqa: F401 (re-exported)
     Mapper,
     MapperConfig,
     Mesh,
+    input_copies,
     io,
     odometry,
+    plan,
     sim,
     trajectory,
     validation_errors,
@@ -37,8 +39,10 @@ _sys.modules[__name__ + ".io"] = io
 _sys.modules[__name__ + ".trajectory"] = trajectory
 _sys.modules[__name__ + ".odometry"] = odometry
 _sys.modules[__name__ + ".sim"] = sim
+_sys.modules[__name__ + ".plan"] = plan
 
 __all__ = [
     "CameraIntrinsics", "DeviceError", "DiscoveredObject", "Error", "InputError", "MapConfig",
-    "Mapper", "MapperConfig", "Mesh", "io", "odometry", "sim", "trajectory", "validation_errors",
+    "Mapper", "MapperConfig", "Mesh", "input_copies", "io", "odometry", "plan", "sim", "trajectory",
+    "validation_errors",
 ]

