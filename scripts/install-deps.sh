@@ -17,7 +17,10 @@ PACKAGES=(
   libpcl-dev
   libompl-dev
   pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib
+  libboost-dev chromium fonts-dejavu-core
 )
+# Node.js and npm for the viewer page's packages: Debian's, unless the machine has its own.
+if ! command -v node >/dev/null || ! command -v npm >/dev/null; then PACKAGES+=(nodejs npm); fi
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -28,4 +31,15 @@ if [ "${#missing[@]}" -gt 0 ]; then
   $SUDO apt-get install -y --no-install-recommends "${missing[@]}"
 else
   echo "strata: all Debian dependencies already installed" >&2
+fi
+# The viewer page's packages (three.js, esbuild, playwright-core), exactly as web/package-lock.json
+# pins them; nothing else is downloaded (playwright-core drives Debian's chromium).
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+if [ ! -f "$ROOT/web/node_modules/.package-lock.json" ] ||
+   ! cmp -s "$ROOT/web/package-lock.json" "$ROOT/web/node_modules/.strata-lock"; then
+  echo "strata: npm ci in web/" >&2
+  (cd "$ROOT/web" && npm ci --no-audit --no-fund --loglevel=error)
+  cp "$ROOT/web/package-lock.json" "$ROOT/web/node_modules/.strata-lock"
+else
+  echo "strata: web/ npm packages already installed" >&2
 fi

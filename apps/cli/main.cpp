@@ -21,6 +21,7 @@
 #include "cli/sim_command.h"
 #include "cli/topo_command.h"
 #include "strata/core/error.h"
+#include "view/view_command.h"
 #include "strata/vk/vk.h"
 
 namespace {
@@ -41,7 +42,7 @@ int runDefault() {
   std::printf(
       "strata: no command given; running the multi-session demo on the shipped room "
       "(see `strata --help` for fuse, sim, demo, diff, drift, mesh, esdf, select, eval-trajectory, "
-      "map, odometry, align, objects, plan, topo, explore, devices)\n");
+      "map, odometry, align, objects, plan, topo, explore, view, devices)\n");
   return strata::apps::runDemo(strata::apps::DemoOptions{});
 }
 
@@ -82,6 +83,8 @@ int main(int argc, char** argv) {
   CLI::App* topo = strata::apps::addTopoCommand(app, topo_options);
   strata::apps::ExploreOptions explore_options;
   CLI::App* explore = strata::apps::addExploreCommand(app, explore_options);
+  strata::apps::ViewOptions view_options;
+  CLI::App* view = strata::apps::addViewCommand(app, view_options);
   CLI::App* devices = app.add_subcommand("devices", "List the Vulkan devices");
   int exit_code = 0;
   if (!strata::apps::parseCommandLine(app, argc, argv, &exit_code)) return exit_code;
@@ -101,6 +104,7 @@ int main(int argc, char** argv) {
   if (plan->parsed()) return strata::apps::runPlan(plan_options);
   if (topo->parsed()) return strata::apps::runTopo(topo_options);
   if (explore->parsed()) return strata::apps::runExplore(explore_options);
+  if (view->parsed()) return strata::apps::runView(view_options);
   if (devices->parsed()) return listDevices();
   return runDefault();
 }
