@@ -29,7 +29,7 @@ OfflineView::OfflineView(const std::string& path, const std::string& device, Sce
     : scene_(scene) {
   std::error_code ec;
   const fs::path root(path);
-  if (!fs::exists(root, ec)) throw InputError("strata view: '" + path + "' does not exist");
+  if (!fs::exists(root, ec)) throw InputError("'" + path + "' does not exist");
   std::vector<fs::path> plys, maps;
   if (fs::is_directory(root, ec)) {
     for (const auto& entry : fs::directory_iterator(root, ec)) {
@@ -44,7 +44,7 @@ OfflineView::OfflineView(const std::string& path, const std::string& device, Sce
   } else if (hasExtension(root, ".ply")) {
     plys.push_back(root);
   } else {
-    throw InputError("strata view: '" + path + "' is neither a map (.strata), a mesh (.ply) nor a folder");
+    throw InputError("'" + path + "' is neither a map (.strata), a mesh (.ply) nor a folder");
   }
 
   // Read everything before anything is shown: a bad file fails the command, not half a scene.
@@ -96,7 +96,7 @@ OfflineView::OfflineView(const std::string& path, const std::string& device, Sce
     MapFileContents contents = loadMapFile(maps.front().string());
     map = std::move(contents.map);
   }
-  if (items.empty() && !map) throw InputError("strata view: nothing to show in '" + path + "' (no .ply meshes, no .strata map)");
+  if (items.empty() && !map) throw InputError("nothing to show in '" + path + "' (no .ply meshes, no .strata map)");
 
   if (map) {
     vk::ContextOptions options;

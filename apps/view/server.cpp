@@ -71,7 +71,12 @@ class Server::Impl::WsSession : public std::enable_shared_from_this<WsSession> {
     ++server_.clients;
     ++server_.sessions_total;
     beast::get_lowest_layer(ws_).expires_never();
-    ws_.set_option(websocket::stream_base::timeout::suggested(beast::role_type::server));
+    // A peer that stops answering (no pong in 30 s, no reply to a close in 5 s) is dropped.
+    websocket::stream_base::timeout timeouts{};
+    timeouts.handshake_timeout = std::chrono::seconds(5);
+    timeouts.idle_timeout = std::chrono::seconds(30);
+    timeouts.keep_alive_pings = true;
+    ws_.set_option(timeouts);
     ws_.read_message_max(server_.options.max_request_bytes);
     ws_.async_accept(request, [self = shared_from_this()](beast::error_code ec) {
       if (ec) return;

@@ -32,9 +32,9 @@ void validate(const ViewOptions& o) {
   requireNumberIn(o.screenshot_timeout_s, "--screenshot-timeout", "seconds", 1.0, 3600.0);
   OutputPaths paths;
   if (std::filesystem::is_directory(o.path)) {
-    paths.inputFolder(o.path, "the folder to view");
+    paths.inputFolder(o.path, "PATH");
   } else {
-    paths.inputFile(o.path, "the file to view");
+    paths.inputFile(o.path, "PATH");
   }
   if (!o.screenshot_path.empty()) paths.outputFile(o.screenshot_path, "--screenshot");
   paths.check();

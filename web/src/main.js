@@ -345,13 +345,14 @@ function connect() {
   socket.onmessage = onMessage;
 }
 
-function sendSliceHeight() {
-  const z = parseFloat(document.getElementById('slice-z').value);
+function sendSliceHeight(exact) {
+  // The slider snaps to its step; a height given exactly (from a script) is sent as it is.
+  const z = typeof exact === 'number' ? exact : parseFloat(document.getElementById('slice-z').value);
   document.getElementById('slice-z-value').textContent = `${z.toFixed(2)} m`;
   send({ type: 'slice', z });
 }
 
-document.getElementById('slice-z').addEventListener('change', sendSliceHeight);
+document.getElementById('slice-z').addEventListener('change', () => sendSliceHeight());
 document.getElementById('slice-z').addEventListener('input', () => {
   document.getElementById('slice-z-value').textContent = `${parseFloat(document.getElementById('slice-z').value).toFixed(2)} m`;
 });
@@ -401,7 +402,7 @@ canvas.addEventListener('pointerup', (e) => {
 window.strataQuery = (point) => send({ type: 'query', id: ++queryId, point });
 window.strataSetSlice = (z) => {
   document.getElementById('slice-z').value = String(z);
-  sendSliceHeight();
+  sendSliceHeight(z);
 };
 
 let fpsFrames = 0, fpsStart = performance.now();
