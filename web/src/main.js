@@ -398,6 +398,13 @@ canvas.addEventListener('pointerup', (e) => {
   const p = hits[0].point;
   send({ type: 'query', id: ++queryId, point: [p.x, p.y, p.z] });
 });
+// Orbit the camera about the view's centre (z axis) by `radians`: benchmarks drive the view with it.
+window.strataOrbitStep = (radians) => {
+  const offset = camera.position.clone().sub(controls.target);
+  offset.applyAxisAngle(new THREE.Vector3(0, 0, 1), radians);
+  camera.position.copy(controls.target).add(offset);
+  camera.lookAt(controls.target);
+};
 // The same from a test or the console: a point in the world frame.
 window.strataQuery = (point) => send({ type: 'query', id: ++queryId, point });
 window.strataSetSlice = (z) => {
