@@ -10,8 +10,9 @@ nlohmann::json vec3(const Eigen::Vector3f& v) { return {v.x(), v.y(), v.z()}; }
 }  // namespace
 
 Message meshMessage(const std::string& id, const std::string& group, const Mesh& mesh, int session,
-                    const std::string& label) {
+                    const std::string& label, std::int64_t t_pub_us) {
   nlohmann::json header = {{"type", "mesh"}, {"id", id}, {"group", group}};
+  if (t_pub_us > 0) header["t_pub_us"] = t_pub_us;
   if (session >= 0) header["session"] = session;
   if (!label.empty()) header["label"] = label;
   static_assert(sizeof(Eigen::Vector3f) == 12 && sizeof(Eigen::Vector3i) == 12, "packed vectors");
@@ -37,12 +38,14 @@ Message objectsMessage(const std::vector<ObjectBox>& objects) {
 }
 
 Message poseMessage(const std::string& id, const Eigen::Isometry3d& T_W_C, double timestamp_s,
-                    const std::optional<std::array<double, 6>>& intrinsics) {
+                    const std::optional<std::array<double, 6>>& intrinsics,
+                    std::int64_t t_pub_us) {
   nlohmann::json T = nlohmann::json::array();
   for (int r = 0; r < 4; ++r) {
     for (int c = 0; c < 4; ++c) T.push_back(T_W_C.matrix()(r, c));
   }
   nlohmann::json header = {{"type", "pose"}, {"id", id}, {"T_W_C", T}, {"t", timestamp_s}};
+  if (t_pub_us > 0) header["t_pub_us"] = t_pub_us;
   if (intrinsics) {
     const auto& k = *intrinsics;
     header["intrinsics"] = {{"width", k[0]}, {"height", k[1]}, {"fx", k[2]},

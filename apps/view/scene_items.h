@@ -4,6 +4,7 @@
 // safe. Frames: every position is in the map's world frame W, metres; poses are T_W_C (camera to
 // world, camera looking along +z).
 #include <array>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -18,9 +19,11 @@ namespace strata::view {
 
 /// A mesh: "group" is "map" (the surface), "session" (one session's own map, shown when the page
 /// colours by session) or "object" (something that moved); `session` (>= 0) colours it by session
-/// in the page. Colours are sent when the mesh has them.
+/// in the page. Colours are sent when the mesh has them. `t_pub_us` (> 0: sent as the header's
+/// "t_pub_us", microseconds since the Unix epoch) is when its source published it: the page
+/// measures its latency from it.
 Message meshMessage(const std::string& id, const std::string& group, const Mesh& mesh,
-                    int session = -1, const std::string& label = "");
+                    int session = -1, const std::string& label = "", std::int64_t t_pub_us = 0);
 
 struct ObjectBox {
   int id = 0;
@@ -32,9 +35,11 @@ struct ObjectBox {
 };
 Message objectsMessage(const std::vector<ObjectBox>& objects);
 
-/// The camera `id` at T_W_C; intrinsics (width, height, fx, fy, cx, cy) shape its frustum.
+/// The camera `id` at T_W_C; intrinsics (width, height, fx, fy, cx, cy) shape its frustum;
+/// `t_pub_us` as for meshMessage.
 Message poseMessage(const std::string& id, const Eigen::Isometry3d& T_W_C, double timestamp_s,
-                    const std::optional<std::array<double, 6>>& intrinsics = std::nullopt);
+                    const std::optional<std::array<double, 6>>& intrinsics = std::nullopt,
+                    std::int64_t t_pub_us = 0);
 /// A polyline (trajectory "map"/"vio", or a planned "path").
 Message polylineMessage(const std::string& type, const std::string& id,
                         const std::vector<Eigen::Vector3f>& points_W);

@@ -24,6 +24,7 @@ const state = {
   lastAnswer: null,
   latenciesMs: [],
   messages: 0,
+  meshMessages: 0,  // mesh items put or removed
   errors: [],
   framesDrawn: 0,
   fps: 0,
@@ -274,6 +275,7 @@ function renderStats() {
 }
 
 let socket = null;
+let countsDirty = false;  // meshes changed since the counts were last taken (once per frame)
 let pendingLatency = [];
 function send(obj) {
   if (socket && socket.readyState === WebSocket.OPEN) socket.send(JSON.stringify(obj));
@@ -285,11 +287,14 @@ function onMessage(event) {
   switch (header.type) {
     case 'hello':
       state.hello = header;
+      sendSliceHeight();  // offline: the slice at the slider's height (live: the mapper's)
       document.getElementById('title').textContent = `Strata · ${header.title}`;
-      // Without an ESDF (a run folder with no map) there is no slice to show or distance to read.
+      // Without an ESDF (a run folder with no map) there is no slice to show or distance to read;
+      // live, the mapper chooses the slice's height (the page cannot).
       for (const id of ['show-esdf', 'slice-z', 'colourbar', 'query']) {
         const el = document.getElementById(id);
-        (el.closest('label') || el).style.display = header.esdf === false ? 'none' : '';
+        const hidden = header.esdf === false || (header.mode === 'live' && id === 'slice-z');
+        (el.closest('label') || el).style.display = hidden ? 'none' : '';
       }
       break;
     case 'mesh': onMesh(header, arrays); break;
@@ -324,7 +329,10 @@ function onMessage(event) {
     default: state.errors.push(`unknown message type ${header.type}`);
   }
   if (header.t_pub_us !== undefined) pendingLatency.push(header.t_pub_us);
-  if (header.type === 'mesh' || header.type === 'remove') updateCounts();
+  if (header.type === 'mesh' || header.type === 'remove') {
+    countsDirty = true;
+    ++state.meshMessages;
+  }
 }
 
 function connect() {
@@ -334,7 +342,6 @@ function connect() {
   socket.onopen = () => {
     state.connected = true;
     document.getElementById('status').textContent = `connected to ${location.host}`;
-    sendSliceHeight();
   };
   socket.onclose = () => {
     state.connected = false;
@@ -346,6 +353,7 @@ function connect() {
 }
 
 function sendSliceHeight(exact) {
+  if (state.hello && state.hello.mode === 'live') return;  // the mapper's slice, at its height
   // The slider snaps to its step; a height given exactly (from a script) is sent as it is.
   const z = typeof exact === 'number' ? exact : parseFloat(document.getElementById('slice-z').value);
   document.getElementById('slice-z-value').textContent = `${z.toFixed(2)} m`;
@@ -415,6 +423,10 @@ window.strataSetSlice = (z) => {
 let fpsFrames = 0, fpsStart = performance.now();
 function animate() {
   requestAnimationFrame(animate);
+  if (countsDirty) {
+    updateCounts();
+    countsDirty = false;
+  }
   if (!framed && (groups.map.children.length || groups.session.children.length)) frameScene();
   controls.update();
   renderer.render(scene, camera);
