@@ -6,66 +6,25 @@
 #include <pybind11/stl.h>
 
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 
 #include "bindings.h"
 #include "convert.h"
+#include "py_dataset.h"
 #include "strata/core/error.h"
 #include "strata/io/euroc_dataset.h"
 #include "strata/io/open_dataset.h"
 #include "strata/odometry/pipeline/vio_pipeline.h"
 #include "strata/odometry/pipeline/vio_replay.h"
+#include "strata/sim/session/drifted_session.h"
 #include "strata/sim/sim_setup.h"
 #include "strata/sim/world/world_paths.h"
 #include "strata/trajectory/trajectory_error.h"
 
 namespace strata::python {
 namespace {
-
-/// A dataset folder (TUM RGB-D, 7-Scenes) as a sequence of frames.
-class PyDataset {
- public:
-  explicit PyDataset(const std::string& path) : dataset_(openDataset(path)) {}
-  explicit PyDataset(std::unique_ptr<Dataset> dataset) : dataset_(std::move(dataset)) {}
-  std::size_t size() const { return dataset_->size(); }
-  CameraIntrinsics intrinsics() const { return dataset_->intrinsics(); }
-  std::string name() const { return dataset_->name(); }
-  /// Frames of the whole recording the dataset's frames were drawn from (a simulated session's
-  /// path at its rate); size() for other datasets.
-  std::size_t recordedFrames() const {
-    const auto* sim = dynamic_cast<const sim::SimSessionDataset*>(dataset_.get());
-    return sim ? sim->recordedFrames() : size();
-  }
-  py::dict frame(std::ptrdiff_t index) const {
-    const auto n = static_cast<std::ptrdiff_t>(size());
-    if (index < 0) index += n;
-    if (index < 0 || index >= n) throw py::index_error("frame index out of range");
-    RgbdFrame f;
-    {
-      py::gil_scoped_release release;
-      f = dataset_->load(static_cast<std::size_t>(index));
-    }
-    py::array_t<float> depth({f.depth.height_px, f.depth.width_px});
-    std::copy(f.depth.depth_m.begin(), f.depth.depth_m.end(), depth.mutable_data());
-    py::dict out;
-    out["depth"] = depth;
-    if (!f.color.empty()) {
-      py::array_t<std::uint8_t> color({f.color.height_px, f.color.width_px, 3});
-      std::copy(f.color.rgb.begin(), f.color.rgb.end(), color.mutable_data());
-      out["color"] = color;
-    } else {
-      out["color"] = py::none();
-    }
-    out["T_W_C"] = poseTo(f.T_W_C);
-    out["timestamp_s"] = f.timestamp_s;
-    out["name"] = f.name;
-    return out;
-  }
-
- private:
-  std::unique_ptr<Dataset> dataset_;
-};
 
 /// A VIO run over an EuRoC folder: the left camera's trajectory and the pipeline's counts.
 struct VioRun {
@@ -205,6 +164,39 @@ void bindSim(py::module_& s) {
       "A simulated session of a world (a shipped name: room, office, warehouse, deadend, or a "
       "world file) as a Dataset: `frames` frames spread over the session's path (0: all at "
       "rate_hz), rendered when indexed, with the simulator's depth noise unless noise=False.");
+  s.def(
+      "drifted_session",
+      [](const std::string& source, const std::string& out, std::size_t first_frame,
+         std::optional<std::size_t> last_frame, std::uint64_t seed, bool drift, bool offset) {
+        sim::DriftedSessionConfig config;
+        config.first_frame = first_frame;
+        config.last_frame = last_frame;
+        config.seed = seed;
+        config.offset = offset;
+        if (!drift) {
+          config.drift.translation_sigma_m_per_sqrt_m = 0.0;
+          config.drift.yaw_sigma_rad_per_sqrt_m = 0.0;
+        }
+        config.validate();
+        sim::DriftedSession session;
+        {
+          py::gil_scoped_release release;
+          session = sim::writeDriftedSession(source, out, config);
+        }
+        py::dict result;
+        result["T_W_S"] = poseTo(session.T_W_S);
+        result["frames"] = session.frames;
+        result["frames_dropped"] = session.frames_dropped;
+        return result;
+      },
+      py::arg("source"), py::arg("out"), py::arg("first_frame") = 0,
+      py::arg("last_frame") = py::none(), py::arg("seed") = 1, py::arg("drift") = true,
+      py::arg("offset") = true,
+      "Writes `out` as a session folder (TUM layout) from frames first_frame..last_frame "
+      "(inclusive; None: to the end) of the TUM folder `source`, for alignment: odometry.txt is "
+      "the truth with odometry drift (drift=False: none) in a random frame of its own "
+      "(offset=False: the source's), groundtruth.txt the truth; images are listed, not copied. "
+      "Returns dict(T_W_S 4 x 4: the true session-to-world, frames, frames_dropped).");
 }
 
 void bindOdometry(py::module_& o) {

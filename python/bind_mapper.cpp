@@ -19,16 +19,6 @@
 namespace strata::python {
 namespace {
 
-/// The mapper's frame buffer filled from the arrays and validated against the intrinsics.
-RgbdFrame& frameFrom(PyMapper& self, const py::array& depth, const CameraIntrinsics& intrinsics,
-                     const py::object& color, double depth_scale) {
-  RgbdFrame& frame = self.frameBuffer();
-  depthInto(depth, depth_scale, frame.depth);
-  colorInto(color, frame.color);
-  validateFrame(frame, intrinsics);
-  return frame;
-}
-
 template <typename T>
 std::string reprOf(const char* name, const T& fields) {
   std::ostringstream s;

@@ -10,6 +10,7 @@
 #include <memory>
 #include <string>
 
+#include "convert.h"
 #include "strata/core/error.h"
 #include "strata/mapper/mapper.h"
 #include "strata/vk/vk.h"
@@ -69,6 +70,18 @@ auto withoutGil(PyMapper& self, Work work) {
   self.setLastCallSeconds(
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   return result;
+}
+
+/// The mapper's frame buffer filled from the arrays (convert.h) and validated against the
+/// intrinsics: what integrate(), track_and_integrate() and score_keyframe() read.
+inline RgbdFrame& frameFrom(PyMapper& self, const py::array& depth,
+                            const CameraIntrinsics& intrinsics, const py::object& color,
+                            double depth_scale) {
+  RgbdFrame& frame = self.frameBuffer();
+  depthInto(depth, depth_scale, frame.depth);
+  colorInto(color, frame.color);
+  validateFrame(frame, intrinsics);
+  return frame;
 }
 
 }  // namespace strata::python

@@ -36,6 +36,7 @@ PYBIND11_MODULE(_strata, m) {
   });
   bindConfigs(m);
   bindMapper(m);
+  bindRender(m);
   py::module_ io = m.def_submodule("io", "Datasets as arrays");
   bindIo(io);
   py::module_ trajectory = m.def_submodule("trajectory", "Trajectory accuracy (ATE, RPE)");
@@ -44,8 +45,17 @@ PYBIND11_MODULE(_strata, m) {
   bindSim(sim);
   py::module_ odometry = m.def_submodule("odometry", "Visual-inertial odometry");
   bindOdometry(odometry);
+  bindVio(odometry);
   py::module_ plan = m.def_submodule("plan", "Path planning on a Mapper's ESDF");
   bindPlan(plan);
+  py::module_ store = m.def_submodule("store", "The session store: many sessions in one map");
+  bindStore(store);
+  py::module_ align = m.def_submodule("align", "Multi-session alignment of a store's sessions");
+  bindAlign(align);
+  py::module_ objects = m.def_submodule("objects", "The object database over sessions");
+  bindObjects(objects);
+  py::module_ explore = m.def_submodule("explore", "Closed-loop exploration of simulated worlds");
+  bindExplore(explore);
   m.def("input_copies", &inputCopies,
         "Input arrays (depth, colour, points) the bindings converted into a temporary so far in "
         "this process: another dtype or not C-contiguous. Arrays in the library's dtype and C "

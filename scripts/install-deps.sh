@@ -16,7 +16,7 @@ PACKAGES=(
   libhnswlib-dev
   libpcl-dev
   libompl-dev
-  pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib python3-pil
   libboost-dev chromium fonts-dejavu-core
 )
 # Node.js and npm for the viewer page's packages: Debian's, unless the machine has its own.

@@ -188,7 +188,7 @@ int run(const AlignOptions& o) {
   const align::StoreAlignment a = align::alignStore(db, config, progress);
   std::optional<align::AlignmentScore> score;
   if (!o.no_truth) {
-    if (const auto truth = loadAlignTruth(a)) score = align::scoreAlignment(a.result, *truth, config);
+    if (const auto truth = align::loadStoreTruth(a)) score = align::scoreAlignment(a.result, *truth, config);
   }
   const align::AlignmentScore* score_ptr = score ? &*score : nullptr;
   const fs::path out(out_dir);

@@ -168,21 +168,4 @@ void writeAlignReport(const align::StoreAlignment& a, const align::AlignmentScor
   writeTextAtomically(path, jsonFileText(j));
 }
 
-std::optional<std::vector<align::SessionTruth>> loadAlignTruth(const align::StoreAlignment& a) {
-  std::vector<align::SessionTruth> truth;
-  for (std::size_t s = 0; s < a.sessions.size(); ++s) {
-    const fs::path file = fs::path(a.sessions[s].source_folder) / "groundtruth.txt";
-    if (!fs::exists(file) || fs::equivalent(file, a.odometry_files[s])) return std::nullopt;
-    const std::vector<tum::TimedPose> poses = tum::readTrajectory(file.string());
-    align::SessionTruth session;
-    for (double t : a.result.sessions[s].frame_timestamps_s) {
-      session.push_back(interpolateStamped(
-          poses, t, 0.1, [](const tum::TimedPose& p) { return p.timestamp_s; },
-          [](const tum::TimedPose& p) { return p.T_W_C; }));
-    }
-    truth.push_back(std::move(session));
-  }
-  return truth;
-}
-
 }  // namespace strata::apps

@@ -25,8 +25,4 @@ void writeLoopsCsv(const align::StoreAlignment& a, const align::AlignmentScore* 
 void writeAlignReport(const align::StoreAlignment& a, const align::AlignmentScore* score,
                       const std::string& db_path, double total_s, const std::string& path);
 
-/// The truth of every session when each folder has a groundtruth.txt that is not the odometry
-/// it was aligned with; nullopt otherwise. Frames take the truth interpolated at their time.
-std::optional<std::vector<align::SessionTruth>> loadAlignTruth(const align::StoreAlignment& a);
-
 }  // namespace strata::apps

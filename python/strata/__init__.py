@@ -16,20 +16,26 @@ RuntimeError) with the C++ message. See docs/python.md.
 import sys as _sys
 
 from ._strata import (  # noqa: F401 (re-exported)
+    align,
     CameraIntrinsics,
     DeviceError,
     DiscoveredObject,
     Error,
     InputError,
+    KeyframeDecision,
     MapConfig,
     Mapper,
     MapperConfig,
     Mesh,
+    Rendering,
     input_copies,
+    explore,
     io,
+    objects,
     odometry,
     plan,
     sim,
+    store,
     trajectory,
     validation_errors,
 )
@@ -40,9 +46,14 @@ _sys.modules[__name__ + ".trajectory"] = trajectory
 _sys.modules[__name__ + ".odometry"] = odometry
 _sys.modules[__name__ + ".sim"] = sim
 _sys.modules[__name__ + ".plan"] = plan
+_sys.modules[__name__ + ".store"] = store
+_sys.modules[__name__ + ".align"] = align
+_sys.modules[__name__ + ".objects"] = objects
+_sys.modules[__name__ + ".explore"] = explore
 
 __all__ = [
-    "CameraIntrinsics", "DeviceError", "DiscoveredObject", "Error", "InputError", "MapConfig",
-    "Mapper", "MapperConfig", "Mesh", "input_copies", "io", "odometry", "plan", "sim", "trajectory",
+    "CameraIntrinsics", "DeviceError", "DiscoveredObject", "Error", "InputError",
+    "KeyframeDecision", "MapConfig", "Mapper", "MapperConfig", "Mesh", "Rendering", "align",
+    "explore", "input_copies", "io", "objects", "odometry", "plan", "sim", "store", "trajectory",
     "validation_errors",
 ]

@@ -10,7 +10,9 @@ import pytest
 import strata
 
 MODULES = {"__init__": strata, "io": strata.io, "trajectory": strata.trajectory,
-           "odometry": strata.odometry, "sim": strata.sim, "plan": strata.plan}
+           "odometry": strata.odometry, "sim": strata.sim, "plan": strata.plan,
+           "store": strata.store, "align": strata.align, "objects": strata.objects,
+           "explore": strata.explore}
 
 
 def stub_names(name):

@@ -8,6 +8,8 @@
 #include <map>
 
 #include "strata/core/error.h"
+#include "strata/core/pose_interpolation.h"
+#include "strata/io/tum_format.h"
 #include "strata/io/open_dataset.h"
 
 namespace strata::align {
@@ -139,6 +141,23 @@ StoreAlignment alignStore(store::Store& store, const AlignConfig& config,
   out.result = alignSessions(sessions, config, progress);
   writeResults(store, out);
   return out;
+}
+
+std::optional<std::vector<SessionTruth>> loadStoreTruth(const StoreAlignment& a) {
+  std::vector<SessionTruth> truth;
+  for (std::size_t s = 0; s < a.sessions.size(); ++s) {
+    const fs::path file = fs::path(a.sessions[s].source_folder) / "groundtruth.txt";
+    if (!fs::exists(file) || fs::equivalent(file, a.odometry_files[s])) return std::nullopt;
+    const std::vector<tum::TimedPose> poses = tum::readTrajectory(file.string());
+    SessionTruth session;
+    for (double t : a.result.sessions[s].frame_timestamps_s) {
+      session.push_back(interpolateStamped(
+          poses, t, 0.1, [](const tum::TimedPose& p) { return p.timestamp_s; },
+          [](const tum::TimedPose& p) { return p.T_W_C; }));
+    }
+    truth.push_back(std::move(session));
+  }
+  return truth;
 }
 
 }  // namespace strata::align

@@ -9,9 +9,11 @@
 // store (a keyframe without a frame within 20 ms, changed files), plus alignSessions' errors; the
 // store is unchanged then. Thread safety: as Store.
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "strata/align/alignment_eval.h"
 #include "strata/align/session_alignment.h"
 #include "strata/store/session_store.h"
 
@@ -32,5 +34,11 @@ std::string sessionOdometryFile(const std::string& folder);
 /// results into it.
 StoreAlignment alignStore(store::Store& store, const AlignConfig& config = {},
                           const AlignProgress& progress = {});
+
+/// The truth of every session's frames from its folder's groundtruth.txt (interpolated to each
+/// frame's timestamp, 0.1 s at most from a truth pose), for scoreAlignment; nullopt when a session
+/// has no such file or its odometry is that file (nothing to score against). InputError for a
+/// truth file that does not parse.
+std::optional<std::vector<SessionTruth>> loadStoreTruth(const StoreAlignment& alignment);
 
 }  // namespace strata::align

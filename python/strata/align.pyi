@@ -1,0 +1,59 @@
+# Type stubs of strata.align (see __init__.pyi).
+from typing import Dict, List, Optional
+
+import numpy as np
+import numpy.typing as npt
+
+from .store import Store
+
+class AlignedSession:
+    @property
+    def id(self) -> int: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def aligned(self) -> bool: ...
+    @property
+    def T_W_S(self) -> Optional[npt.NDArray[np.float64]]: ...  # 4 x 4
+    @property
+    def trajectory(self) -> npt.NDArray[np.float64]: ...  # N x 8, T_W_C
+    @property
+    def odometry(self) -> npt.NDArray[np.float64]: ...  # N x 8, T_S_C
+    @property
+    def keyframe_T_W_C(self) -> npt.NDArray[np.float64]: ...  # K x 4 x 4
+
+class AlignmentScore:
+    @property
+    def aligned_sessions(self) -> int: ...
+    @property
+    def ate_before_rmse_m(self) -> float: ...
+    @property
+    def ate_after_rmse_m(self) -> float: ...
+    @property
+    def ate_after_max_m(self) -> float: ...
+    @property
+    def accepted_true(self) -> int: ...
+    @property
+    def accepted_false(self) -> int: ...
+    @property
+    def loop_precision(self) -> float: ...
+    @property
+    def loop_recall(self) -> float: ...
+
+class Alignment:
+    @property
+    def sessions(self) -> List[AlignedSession]: ...
+    @property
+    def candidates(self) -> int: ...
+    @property
+    def loops_verified(self) -> int: ...
+    @property
+    def loops_accepted(self) -> int: ...
+    @property
+    def times(self) -> Dict[str, float]: ...
+    @property
+    def score(self) -> Optional[AlignmentScore]: ...
+
+def align_store(store: Store, candidates: int = 4, intra_gap_s: float = 15.0,
+                intra_session_loops: bool = True, threads: int = 2,
+                truth: bool = True) -> Alignment: ...
