@@ -1,16 +1,17 @@
 // The live viewer in Debian's headless Chromium (playwright-core from web/'s npm packages): opens
-// strata-view's page while strata-play replays a session through strata-mapper, waits until the
-// page's stats account for FRAMES frames (fused, dropped or rejected) and the scene has settled, and writes what
+// strata-view's page while strata-play replays a session through strata-vio and strata-mapper,
+// waits until DONE_FILE exists (the replay has ended), the page's stats account for every frame
+// the mapper received (fused, dropped or rejected) and the scene has settled, and writes what
 // the page holds as JSON (console errors, the mapper's stats as the page shows them, the last
 // camera pose, mesh counts, latencies from the mapper's publish to the page's draw) and a
 // screenshot, for test/test_view_live_chain.cpp to check against what the mapper published.
-//   node live_check.cjs WEB_DIR URL FRAMES OUT.json SHOT.png
+//   node live_check.cjs WEB_DIR URL DONE_FILE OUT.json SHOT.png
 'use strict';
 const fs = require('fs');
 const path = require('path');
 
 async function main() {
-  const [webDir, url, frames, outPath, shotPath] = process.argv.slice(2);
+  const [webDir, url, doneFile, outPath, shotPath] = process.argv.slice(2);
   const { chromium } = require(path.join(webDir, 'node_modules', 'playwright-core'));
   const browser = await chromium.launch({
     executablePath: process.env.STRATA_CHROMIUM || '/usr/bin/chromium',
@@ -34,11 +35,15 @@ async function main() {
       }
     }
     await page.waitForFunction(() => window.strata && window.strata.connected, null, { timeout: 60000 });
-    // Every frame accounted for: fused, dropped or rejected.
-    await page.waitForFunction((n) => {
+    for (let waited = 0; !fs.existsSync(doneFile); waited += 200) {
+      if (waited > 240000) throw new Error(`no ${doneFile} after 240 s: the replay did not end`);
+      await page.waitForTimeout(200);
+    }
+    // Every frame the mapper received accounted for: fused, dropped or rejected.
+    await page.waitForFunction(() => {
       const s = window.strata.stats;
-      return s && s['frames received'] >= n && s.frames + s.dropped + s.rejected >= n;
-    }, Number(frames), { timeout: 240000, polling: 200 });
+      return s && s['frames received'] > 0 && s.frames + s.dropped + s.rejected >= s['frames received'];
+    }, null, { timeout: 120000, polling: 200 });
     // Settled: no mesh block for a second and a half (the stats and the slice keep coming).
     let last = -1;
     for (let i = 0; i < 60; ++i) {
