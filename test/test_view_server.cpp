@@ -21,6 +21,7 @@
 
 #include "strata/core/error.h"
 #include "strata/mesh/ply.h"
+#include "view/offline_view.h"
 #include "view/scene.h"
 #include "view/server.h"
 #include "view/view_command.h"
@@ -342,6 +343,53 @@ TEST(ViewServer, AnAddressInUseIsAnInputErrorNamingIt) {
   options.bind_address = "not-an-address";
   Server third(scene, options);
   EXPECT_THROW(third.start(), InputError);
+}
+
+}  // namespace
+}  // namespace strata::view
+
+namespace strata::view {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A run folder as strata plan and strata align leave them: a mesh, a path, session trajectories one
+// folder down; each becomes a scene item, and a malformed path file fails the whole view.
+TEST(ViewOffline, RunFoldersGiveMeshesPathsAndSessionTrajectories) {
+  const fs::path dir = fs::path(::testing::TempDir()) / ("strata_view_run_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "session_1");
+  Mesh triangle;
+  triangle.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  triangle.triangles = {{0, 1, 2}};
+  writePly((dir / "static_mesh.ply").string(), triangle);
+  std::ofstream(dir / "path.csv") << "x,y,z\n0,0,1\n0.5,0,1\n1,0.5,1.2\n";
+  std::ofstream(dir / "session_1" / "trajectory.txt")
+      << "# t tx ty tz qx qy qz qw\n0 0 0 1 0 0 0 1\n0.1 0.1 0 1 0 0 0 1\n0.2 0.2 0 1 0 0 0 1\n0.3 0.3 0.1 1 0 0 0 1\n";
+  Scene scene;
+  OfflineView view(dir.string(), "", scene);
+  EXPECT_FALSE(view.hasEsdf());
+  const Message path = scene.get("path:path.csv");
+  ASSERT_NE(path, nullptr) << view.summary();
+  EXPECT_EQ(decodeMessage(*path).header["arrays"][0]["count"], 9);
+  const Message trajectory = scene.get("trajectory:session_1/trajectory.txt");
+  ASSERT_NE(trajectory, nullptr) << view.summary();
+  const DecodedMessage t = decodeMessage(*trajectory);
+  EXPECT_EQ(t.header["arrays"][0]["count"], 12);
+  float last[3];
+  std::memcpy(last, t.payload.data() + 9 * sizeof(float), sizeof(last));
+  EXPECT_FLOAT_EQ(last[0], 0.3f);
+  EXPECT_FLOAT_EQ(last[1], 0.1f);
+  EXPECT_FLOAT_EQ(last[2], 1.0f);
+  ASSERT_NE(scene.get("mesh:static_mesh"), nullptr);
+  // An answer without a map says why.
+  EXPECT_EQ(decodeMessage(*view.answer({{"type", "query"}, {"point", {0, 0, 0}}})).header["type"], "error");
+
+  std::ofstream(dir / "path.csv") << "x,y,z\n0,0,1\n0,nan,1\n";
+  Scene other;
+  EXPECT_THROW(OfflineView(dir.string(), "", other), InputError);
+  EXPECT_EQ(other.size(), 0u) << "a view that failed put something in its scene";
+  fs::remove_all(dir);
 }
 
 }  // namespace

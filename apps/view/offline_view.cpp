@@ -5,11 +5,13 @@
 #include <filesystem>
 #include <limits>
 #include <regex>
+#include <fstream>
 #include <sstream>
 
 #include "strata/core/error.h"
 #include "strata/map/map_file.h"
 #include "strata/mapper/mapper.h"
+#include "strata/io/tum_format.h"
 #include "strata/mesh/ply.h"
 #include "strata/vk/vk.h"
 #include "view/scene_items.h"
@@ -23,6 +25,38 @@ constexpr int kMaxSliceCells = 400;
 
 bool hasExtension(const fs::path& p, const char* ext) { return p.extension() == ext; }
 
+// strata plan's path.csv ("x,y,z" and one point a line).
+bool isPathFile(const std::string& name) { return name == "path.csv"; }
+// A TUM trajectory: strata align's trajectory.txt, or a name ending in _trajectory.txt.
+bool isTrajectoryFile(const std::string& name) {
+  const std::string suffix = "_trajectory.txt";
+  return name == "trajectory.txt" ||
+         (name.size() > suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0);
+}
+
+std::vector<Eigen::Vector3f> readPathCsv(const fs::path& file) {
+  std::ifstream in(file);
+  if (!in) throw InputError("cannot read '" + file.string() + "'");
+  std::string line;
+  std::getline(in, line);
+  if (line.rfind("x,y,z", 0) != 0) throw InputError("'" + file.string() + "': a path file starts with the header x,y,z");
+  std::vector<Eigen::Vector3f> points;
+  int row = 1;
+  while (std::getline(in, line)) {
+    ++row;
+    if (line.empty()) continue;
+    std::istringstream fields(line);
+    Eigen::Vector3f p;
+    char comma1 = 0, comma2 = 0;
+    if (!(fields >> p.x() >> comma1 >> p.y() >> comma2 >> p.z()) || comma1 != ',' || comma2 != ',' || !p.allFinite() ||
+        p.cwiseAbs().maxCoeff() > 1e6f) {
+      throw InputError("'" + file.string() + "' line " + std::to_string(row) + ": not three finite numbers x,y,z");
+    }
+    points.push_back(p);
+  }
+  return points;
+}
+
 }  // namespace
 
 OfflineView::OfflineView(const std::string& path, const std::string& device, Scene& scene)
@@ -30,15 +64,34 @@ OfflineView::OfflineView(const std::string& path, const std::string& device, Sce
   std::error_code ec;
   const fs::path root(path);
   if (!fs::exists(root, ec)) throw InputError("'" + path + "' does not exist");
-  std::vector<fs::path> plys, maps;
+  std::vector<fs::path> plys, maps, lines;
   if (fs::is_directory(root, ec)) {
+    // The folder's own files, and those of its folders one level down: strata align writes
+    // session_<s>/trajectory.txt, strata explore one folder per planner.
+    std::vector<fs::path> folders = {root};
     for (const auto& entry : fs::directory_iterator(root, ec)) {
-      if (!entry.is_regular_file()) continue;
-      if (hasExtension(entry.path(), ".ply")) plys.push_back(entry.path());
-      if (hasExtension(entry.path(), ".strata")) maps.push_back(entry.path());
+      if (entry.is_directory()) folders.push_back(entry.path());
+    }
+    std::sort(folders.begin() + 1, folders.end());
+    for (const fs::path& folder : folders) {
+      std::vector<fs::path> folder_plys, folder_maps;
+      for (const auto& entry : fs::directory_iterator(folder, ec)) {
+        if (!entry.is_regular_file()) continue;
+        const std::string name = entry.path().filename().string();
+        if (hasExtension(entry.path(), ".ply")) folder_plys.push_back(entry.path());
+        if (hasExtension(entry.path(), ".strata")) folder_maps.push_back(entry.path());
+        if (isPathFile(name) || isTrajectoryFile(name)) lines.push_back(entry.path());
+      }
+      // Meshes and maps from the first folder that has any (the top one before its folders):
+      // strata explore --compare's planners each mapped the same world.
+      if (plys.empty() && maps.empty()) {
+        plys = std::move(folder_plys);
+        maps = std::move(folder_maps);
+      }
     }
     std::sort(plys.begin(), plys.end());
     std::sort(maps.begin(), maps.end());
+    std::sort(lines.begin(), lines.end());
   } else if (hasExtension(root, ".strata")) {
     maps.push_back(root);
   } else if (hasExtension(root, ".ply")) {
@@ -91,12 +144,32 @@ OfflineView::OfflineView(const std::string& path, const std::string& device, Sce
     }
     items.push_back(std::move(item));
   }
+  struct Line {
+    std::string type, id;
+    std::vector<Eigen::Vector3f> points;
+  };
+  std::vector<Line> polylines;
+  for (const fs::path& file : lines) {
+    const std::string relative = fs::relative(file, root, ec).string();
+    Line line;
+    if (isPathFile(file.filename().string())) {
+      line.type = "path";
+      line.points = readPathCsv(file);
+    } else {
+      line.type = "trajectory";
+      for (const tum::TimedPose& pose : tum::readTrajectory(file.string())) {
+        line.points.push_back(pose.T_W_C.translation().cast<float>());
+      }
+    }
+    line.id = relative;
+    if (line.points.size() >= 2) polylines.push_back(std::move(line));
+  }
   std::optional<TsdfMap> map;
   if (!maps.empty()) {
     MapFileContents contents = loadMapFile(maps.front().string());
     map = std::move(contents.map);
   }
-  if (items.empty() && !map) throw InputError("nothing to show in '" + path + "' (no .ply meshes, no .strata map)");
+  if (items.empty() && !map && polylines.empty()) throw InputError("nothing to show in '" + path + "' (no .ply mesh, .strata map, trajectory.txt or path.csv, nor in its folders)");
 
   if (map) {
     vk::ContextOptions options;
@@ -134,7 +207,8 @@ OfflineView::OfflineView(const std::string& path, const std::string& device, Sce
     ++meshes;
   }
   std::ostringstream s;
-  s << meshes << " meshes (" << triangles << " triangles), " << boxes.size() << " objects"
+  s << meshes << " meshes (" << triangles << " triangles), " << boxes.size() << " objects, "
+    << polylines.size() << " trajectories and paths"
     << (mapper_ ? ", ESDF from " + maps.front().filename().string() : ", no ESDF (no .strata map)");
   summary_ = s.str();
 
@@ -144,6 +218,9 @@ OfflineView::OfflineView(const std::string& path, const std::string& device, Sce
                                      {"esdf", mapper_ != nullptr}}));
   for (const Item& item : items) scene_.put(item.id, meshMessage(item.id, item.group, item.mesh, item.session, item.label));
   if (!boxes.empty()) scene_.put("objects", objectsMessage(boxes));
+  for (const Line& line : polylines) {
+    scene_.put(line.type + ":" + line.id, polylineMessage(line.type, line.id, line.points));
+  }
   nlohmann::json stats = {{"meshes", meshes}, {"triangles", triangles}, {"objects", boxes.size()}};
   if (mapper_) stats["blocks"] = mapper_->blockCount();
   scene_.put("stats", encodeMessage({{"type", "stats"}, {"values", stats}}));

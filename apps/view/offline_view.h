@@ -5,7 +5,10 @@
 // page's colour-by-session view), session_<s>_object_<k>.ply as the objects that moved, with
 // their boxes; any other PLY as part of the map; a .strata map in it for the ESDF). Object
 // database models (model_<k>.ply, in their own frames), completed scenes and the simulator's true
-// meshes (session_<s>_truth.ply) are not shown.
+// meshes (session_<s>_truth.ply) are not shown. Trajectories (TUM: trajectory.txt, *_trajectory.txt,
+// as strata align writes per session) and planned paths (strata plan's path.csv) are drawn as
+// lines, from the folder and the folders one level down; meshes and maps come from the first of
+// those that has any (strata explore writes one folder per planner).
 //
 // Errors: InputError naming the path when it is missing, neither a map nor a folder, a folder with
 // nothing to show, or a file that does not parse; all before the server starts.

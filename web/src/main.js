@@ -301,10 +301,15 @@ function onMessage(event) {
     case 'remove': disposeItem(header.id); break;
     case 'objects': onObjects(header); break;
     case 'pose': onPose(header); break;
-    case 'trajectory':
-      lineItem(`trajectory:${header.id}`, arrays.points, header.id === 'vio' ? 0x4ad2ff : 0xffd24a, groups.overlay);
+    case 'trajectory': {
+      // A session's trajectory in its session's colour; the VIO's cyan; the camera's own yellow.
+      const session = /session_(\d+)/.exec(header.id);
+      const colour = session ? sessionPalette[Number(session[1]) % sessionPalette.length]
+        : header.id === 'vio' ? 0x4ad2ff : 0xffd24a;
+      lineItem(`trajectory:${header.id}`, arrays.points, colour, groups.overlay);
       state.trajectoryPoints = arrays.points.length / 3;
       break;
+    }
     case 'path':
       lineItem(`path:${header.id}`, arrays.points, 0x52ff7a, groups.overlay);
       state.pathPoints = arrays.points.length / 3;
