@@ -16,7 +16,7 @@ struct ScreenshotOptions {
   int width = 1280;
   int height = 800;
   /// From the browser's start to the page being ready.
-  double timeout_s = 60.0;
+  double timeout_s = 300.0;
   /// A JavaScript expression the page must make true before the picture is taken.
   std::string ready_expression = "window.strata && window.strata.synced && window.strata.firstSceneDrawn";
   /// Frames to let the page draw after it is ready (the camera framing, the slice texture).

@@ -25,6 +25,13 @@ constexpr int kMaxSliceCells = 400;
 
 bool hasExtension(const fs::path& p, const char* ext) { return p.extension() == ext; }
 
+// The page's title: the file or folder's own name ("strata_out" for "strata_out/").
+std::string title(const fs::path& p) {
+  fs::path name = p.lexically_normal().filename();
+  if (name.empty()) name = p.lexically_normal().parent_path().filename();
+  return name.empty() ? p.string() : name.string();
+}
+
 // strata plan's path.csv ("x,y,z" and one point a line).
 bool isPathFile(const std::string& name) { return name == "path.csv"; }
 // A TUM trajectory: strata align's trajectory.txt, or a name ending in _trajectory.txt.
@@ -213,7 +220,7 @@ OfflineView::OfflineView(const std::string& path, const std::string& device, Sce
   summary_ = s.str();
 
   scene_.put("hello", encodeMessage({{"type", "hello"},
-                                     {"title", fs::path(path).filename().string()},
+                                     {"title", title(root)},
                                      {"mode", "offline"},
                                      {"esdf", mapper_ != nullptr}}));
   for (const Item& item : items) scene_.put(item.id, meshMessage(item.id, item.group, item.mesh, item.session, item.label));

@@ -25,7 +25,8 @@ struct ViewOptions {
   std::string screenshot_path;
   int width = 1280, height = 800;  // of the screenshot
   std::string browser = "/usr/bin/chromium";
-  double screenshot_timeout_s = 60.0;
+  /// The README demo's folder (2 M triangles) takes about 70 s with software WebGL on 2 cores.
+  double screenshot_timeout_s = 300.0;
   std::string device;
   bool quiet = false;
 };
