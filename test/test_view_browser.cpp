@@ -14,6 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "browser_available.h"
 #include "fusion_fixture.h"
 #include "strata/io/image_io.h"
 #include "strata/map/map_file.h"
@@ -28,20 +29,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string chromium() {
-  const char* env = std::getenv("STRATA_CHROMIUM");
-  return env ? env : "/usr/bin/chromium";
-}
-
-std::string whyNotRunnable() {
-  if (access(chromium().c_str(), X_OK) != 0) return "no Chromium at " + chromium() + " (apt-get install chromium)";
-  if (std::system("node --version > /dev/null 2>&1") != 0) return "no Node.js (node) on PATH";
-  if (!fs::exists(fs::path(STRATA_WEB_DIR) / "node_modules" / "playwright-core")) return "web/node_modules has no playwright-core (npm ci in web/)";
-  return "";
-}
-
 TEST(ViewBrowser, ThePageShowsTheMapAndReadsTheMappersDistances) {
-  const std::string missing = whyNotRunnable();
+  const std::string missing = test::browserUnavailable();
   if (!missing.empty()) GTEST_SKIP() << missing;
   const fs::path dir = fs::path(::testing::TempDir()) / ("strata_view_browser_" + std::to_string(getpid()));
   fs::remove_all(dir);

@@ -14,6 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "browser_available.h"
 #include "lcm_process_helpers.h"
 #include "strata/lcm/channels.h"
 #include "strata/lcm/convert_pose.h"
@@ -23,15 +24,6 @@ namespace strata::test {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string browserUnavailable() {
-  const char* env = std::getenv("STRATA_CHROMIUM");
-  const std::string chromium = env ? env : "/usr/bin/chromium";
-  if (access(chromium.c_str(), X_OK) != 0) return "no Chromium at " + chromium;
-  if (std::system("node --version > /dev/null 2>&1") != 0) return "no Node.js (node) on PATH";
-  if (!fs::exists(fs::path(STRATA_WEB_DIR) / "node_modules" / "playwright-core")) return "web/node_modules has no playwright-core";
-  return "";
-}
 
 TEST(ViewLiveChain, TheBrowserShowsWhatTheMapperPublished) {
   const std::string why = namespaceUnavailable() + browserUnavailable();

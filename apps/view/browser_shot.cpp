@@ -67,8 +67,12 @@ class Browser {
       throw Error("screenshot: no browser at '" + o.browser +
                   "' (Debian: apt-get install chromium; or --browser PATH)");
     }
-    char pattern[] = "/tmp/strata-view-browser-XXXXXX";
-    if (!mkdtemp(pattern)) throw Error("screenshot: cannot make a temporary browser profile");
+    // A private profile in the system's temporary folder (TMPDIR when set).
+    std::error_code ec;
+    std::string pattern = (fs::temp_directory_path(ec) / "strata-view-browser-XXXXXX").string();
+    if (ec || !mkdtemp(pattern.data())) {
+      throw Error("screenshot: cannot make a temporary browser profile in " + pattern);
+    }
     profile_ = pattern;
     const std::vector<std::string> args = {
         o.browser, "--headless=new", "--no-sandbox", "--disable-gpu", "--enable-unsafe-swiftshader",

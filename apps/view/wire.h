@@ -28,7 +28,8 @@ struct WireArray {
 /// The message of `header` (a JSON object; its "arrays" is written here) and `arrays`.
 Message encodeMessage(nlohmann::json header, const std::vector<WireArray>& arrays = {});
 
-/// A decoded message: the header and the payload's bytes (for tests and the CLI's checks).
+/// A decoded message: the header and the payload's bytes (the page decodes in JavaScript; this is
+/// for the C++ clients of the stream, the tests among them).
 struct DecodedMessage {
   nlohmann::json header;
   std::string payload;
