@@ -13,6 +13,7 @@
 #include "strata/mapper/mapper.h"
 #include "preload.h"
 #include "track_peer.h"
+#include "strata/track/gauss_newton.h"
 #include "strata/trajectory/trajectory_error.h"
 #include "bench_timing.h"
 
@@ -60,11 +61,54 @@ struct StrataRun {
   double iterations = 0.0;
   // The tracked frames' figures nearest to the failure rules (docs/track.md).
   double lowest_eigenvalue = 1e300, lowest_inlier_fraction = 1.0, highest_rms_m = 0.0;
+  // The stated uncertainty per tracked frame (TrackResult), index = frame.
+  std::vector<double> translation_sigma_m, rotation_sigma_deg;
 };
+
+/// The stated uncertainty against the error the frame added: the error of the motion from the
+/// previous fused frame to this one against the dataset's (the model the frame was tracked
+/// against carries the earlier frames' errors, which the frame did not make).
+Json uncertaintyJson(const PreloadedFrames& data, const StrataRun& run) {
+  std::vector<double> ratio_t, sigma_t, step_t;
+  std::size_t within_3sigma = 0, tracked = 0;
+  Json frames = Json::array();
+  std::size_t previous = 0;
+  for (std::size_t i = 1; i < data.frames.size(); ++i) {
+    if (!run.fused[i]) continue;
+    const Eigen::Isometry3d est = run.T_W_C[previous].inverse() * run.T_W_C[i];
+    const Eigen::Isometry3d truth = data.frames[previous].T_W_C.inverse() * data.frames[i].T_W_C;
+    const Eigen::Isometry3d error = truth.inverse() * est;
+    const double e_t = error.translation().norm();
+    const double s_t = run.translation_sigma_m[i];
+    ++tracked;
+    if (e_t <= 3.0 * s_t) ++within_3sigma;
+    ratio_t.push_back(e_t / s_t);
+    sigma_t.push_back(s_t);
+    step_t.push_back(e_t);
+    frames.push(Json::object()
+                    .set("frame", i)
+                    .set("translation_sigma_m", s_t)
+                    .set("rotation_sigma_deg", run.rotation_sigma_deg[i])
+                    .set("step_translation_error_m", e_t)
+                    .set("step_rotation_error_deg", rotationAngleDeg(error)));
+    previous = i;
+  }
+  return Json::object()
+      .set("what",
+           "per tracked frame: the stated sigma (TrackResult) against the error of the motion "
+           "from the previous fused frame")
+      .set("tracked_frames", tracked)
+      .set("translation_sigma_m_median", median(sigma_t))
+      .set("step_translation_error_m_median", median(step_t))
+      .set("error_over_sigma_median", median(ratio_t))
+      .set("share_within_3_sigma", tracked ? static_cast<double>(within_3sigma) / tracked : 0.0)
+      .set("frames", frames);
+}
 
 MapperConfig mapperConfig(const TrackBenchOptions& o) {
   MapperConfig config;
   if (o.model_level >= 0) config.track.model_level = o.model_level;
+  if (o.color_weight >= 0.0) config.track.color_weight = o.color_weight;
   if (!o.iterations.empty()) {
     config.track.iterations = o.iterations;
     config.track.levels = static_cast<int>(o.iterations.size());
@@ -81,6 +125,8 @@ StrataRun runStrata(const PreloadedFrames& data, const TrackBenchOptions& o) {
   Mapper mapper(mapperConfig(o), *context);
   StrataRun run;
   run.device = context->deviceName();
+  run.translation_sigma_m.assign(data.frames.size(), 0.0);
+  run.rotation_sigma_deg.assign(data.frames.size(), 0.0);
   for (std::size_t i = 0; i < data.frames.size(); ++i) {
     const TrackedFrame r = mapper.trackAndIntegrate(data.frames[i], data.intrinsics);
     run.T_W_C.push_back(r.track.T_W_C);
@@ -92,6 +138,8 @@ StrataRun runStrata(const PreloadedFrames& data, const TrackBenchOptions& o) {
     run.lowest_eigenvalue = std::min(run.lowest_eigenvalue, r.track.min_eigenvalue);
     run.lowest_inlier_fraction = std::min(run.lowest_inlier_fraction, r.track.inlier_fraction);
     run.highest_rms_m = std::max(run.highest_rms_m, r.track.rms_m);
+    run.translation_sigma_m[i] = r.track.translation_sigma_m;
+    run.rotation_sigma_deg[i] = r.track.rotation_sigma_deg;
     if (r.fused) run.fusion_ms.push_back(r.integrate.fusion.wall_ms);
     if (!r.fused) ++run.lost;
     if (i % 10 == 0) std::fprintf(stderr, "track: strata frame %zu\n", i);
@@ -124,10 +172,12 @@ int runChecked(TrackBenchOptions options) {
                          .set("lowest_min_eigenvalue", strata.lowest_eigenvalue)
                          .set("lowest_inlier_fraction", strata.lowest_inlier_fraction)
                          .set("highest_rms_m", strata.highest_rms_m)
+                         .set("color_weight", config.track.color_weight)
+                         .set("uncertainty", uncertaintyJson(data, strata))
                          .set("ate", ateJson(data, strata.T_W_C, strata.fused));
 
   std::fprintf(stderr, "track: peer odometry\n");
-  const PeerTrajectory peer = runPeerOdometry(data);
+  const PeerTrajectory peer = options.no_peer ? PeerTrajectory{} : runPeerOdometry(data);
   Json peer_json;  // null without the peer
   Json ratios;
   if (peer.available) {
@@ -179,6 +229,9 @@ CLI::App* addTrackCommand(CLI::App& app, TrackBenchOptions& o) {
       ->add_option("--iterations", o.iterations,
                    "Gauss-Newton iterations per level, the finest level first (sets the level count)")
       ->delimiter(',');
+  track->add_option("--color-weight", o.color_weight,
+                    "Weight of the photometric term (0: geometry alone; default: TrackConfig's)");
+  track->add_flag("--no-peer", o.no_peer, "Skip Open3D's odometry");
   return track;
 }
 

@@ -20,6 +20,8 @@ struct TrackBenchOptions {
   // Tracker settings to compare (defaults: TrackConfig's).
   int model_level = -1;             // -1: the default
   std::vector<int> iterations;      // empty: the default
+  double color_weight = -1.0;       // < 0: the default (0: geometry alone)
+  bool no_peer = false;             // skip Open3D's odometry (where built with it)
 };
 
 CLI::App* addTrackCommand(CLI::App& app, TrackBenchOptions& options);

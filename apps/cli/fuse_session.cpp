@@ -2,6 +2,7 @@
 
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -115,6 +116,7 @@ bool FuseSession::trackFrame(const RgbdFrame& frame) {
   totals_.touched_blocks += stats.touched_blocks;
   fusion_wall_ms_ += stats.wall_ms;
   if (options_.esdf) updateEsdf();
+  if (!first) track_sigma_m_.push_back(result.track.translation_sigma_m);
   estimate_.push_back({frame.timestamp_s, result.track.T_W_C});
   dataset_poses_.push_back({frame.timestamp_s, frame.T_W_C});
   last_pose_ = result.track.T_W_C;
@@ -145,6 +147,12 @@ std::string FuseSession::trackingSummary() const {
     s << "; " << track_wall_ms_ / n << " ms per frame tracking (device time: raycast "
       << track_raycast_ms_ / n << " ms, normal equations " << track_equations_ms_ / n << " ms over "
       << track_iterations_ / n << " iterations)";
+  }
+  if (!track_sigma_m_.empty()) {
+    std::vector<double> sigma = track_sigma_m_;
+    std::sort(sigma.begin(), sigma.end());
+    s << "; stated uncertainty per frame (worst direction, docs/track.md): median "
+      << sigma[sigma.size() / 2] * 1e3 << " mm, largest " << sigma.back() * 1e3 << " mm";
   }
   if (fused_ > 0) {
     s << ", " << fusion_wall_ms_ / static_cast<double>(fused_) << " ms per frame fusion (wall)";

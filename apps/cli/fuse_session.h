@@ -79,6 +79,8 @@ class FuseSession {
   double track_raycast_ms_ = 0.0;
   double track_equations_ms_ = 0.0;
   int track_iterations_ = 0;
+  // Stated uncertainty (TrackResult::translation_sigma_m) of the fused tracked frames.
+  std::vector<double> track_sigma_m_;
   double fusion_wall_ms_ = 0.0;
   std::vector<tum::TimedPose> estimate_, dataset_poses_;  // of the fused frames, for the ATE
 };

@@ -3,6 +3,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <cmath>
+#include <limits>
 
 namespace strata {
 
@@ -50,6 +51,21 @@ GaussNewtonStep solveGaussNewton(const NormalEquations& sums, double min_eigenva
   step.xi = ldlt.solve(-g);
   step.solved = step.xi.allFinite();
   return step;
+}
+
+Matrix6d poseCovariance(const NormalEquations& sums, double rows) {
+  const Matrix6d H = fullJtJ(sums);
+  const Eigen::LDLT<Matrix6d> ldlt(H);
+  if (!(rows > 6.0) || ldlt.info() != Eigen::Success || !ldlt.isPositive()) {
+    return Matrix6d::Identity() * std::numeric_limits<double>::infinity();
+  }
+  const Eigen::SelfAdjointEigenSolver<Matrix6d> eigen(H);
+  if (eigen.info() != Eigen::Success || !(eigen.eigenvalues()[0] > 0.0)) {
+    return Matrix6d::Identity() * std::numeric_limits<double>::infinity();
+  }
+  const double variance = sums.residual_sq / (rows - 6.0);
+  return variance * eigen.eigenvectors() * eigen.eigenvalues().cwiseInverse().asDiagonal() *
+         eigen.eigenvectors().transpose();
 }
 
 Eigen::Isometry3d applyIncrement(const Eigen::Isometry3d& T_W_C, const Vector6d& xi) {

@@ -27,6 +27,14 @@ struct GaussNewtonStep {
 /// noise, whose size depends on the device's float summation order.
 GaussNewtonStep solveGaussNewton(const NormalEquations& sums, double min_eigenvalue = 0.0);
 
+/// The covariance of ξ at a least-squares minimum: σ̂² (JᵀJ)⁻¹ with σ̂² = Σ r² / (rows − 6), the
+/// Gauss-Newton (Laplace) estimate for independent residuals of equal variance. `rows` counts
+/// every residual in the sums (point-to-plane and photometric). Residuals of neighbouring pixels
+/// are correlated, so this understates the true spread (docs/track.md gives the measured ratio);
+/// it is a comparison between frames and between directions, not a calibrated error bar.
+/// Infinite on the diagonal when JᵀJ is not positive definite or rows ≤ 6.
+Matrix6d poseCovariance(const NormalEquations& sums, double rows);
+
 /// T exp(ξ) with the rotation exp(ω) (Rodrigues) and the translation ξ's first three entries
 /// applied in the camera frame (a retraction; first-order equal to the SE(3) exponential).
 Eigen::Isometry3d applyIncrement(const Eigen::Isometry3d& T_W_C, const Vector6d& xi);

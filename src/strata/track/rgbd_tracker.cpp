@@ -1,7 +1,9 @@
 #include "strata/track/rgbd_tracker.h"
 
+#include <Eigen/Eigenvalues>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "strata/core/clock.h"
@@ -34,6 +36,12 @@ TrackResult lostEarly(const Eigen::Isometry3d& T_W_C_guess, const std::string& r
   result.T_W_C = T_W_C_guess;
   result.reason = reason;
   return result;
+}
+
+/// The largest eigenvalue of a symmetric 3x3 block (infinite when any entry is not finite).
+double largestEigenvalue(const Eigen::Matrix3d& m) {
+  if (!m.allFinite()) return std::numeric_limits<double>::infinity();
+  return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(m).eigenvalues()[2];
 }
 
 }  // namespace
@@ -128,12 +136,12 @@ TrackResult RgbdTracker::track(DeviceTsdfMap& map, int tsdf_layer, const RgbdFra
   // The figures of the final pose (the failure rules judge these; the conditioning with the
   // photometric rows, which constrain what the geometry leaves loose).
   const NormalEquations final_sums = equations_.run(0, T_W_C, gates, &ms);
+  const NormalEquations final_photometric =
+      photometric ? photometricEquations(pyramid[0], live_intensity[0], model_intensity, T_W_C,
+                                         photo_gates)
+                  : NormalEquations{};
   const NormalEquations final_system =
-      photometric ? addWeighted(final_sums,
-                                photometricEquations(pyramid[0], live_intensity[0], model_intensity,
-                                                     T_W_C, photo_gates),
-                                color_weight)
-                  : final_sums;
+      photometric ? addWeighted(final_sums, final_photometric, color_weight) : final_sums;
   result.equations_ms += ms;
   result.T_W_C = T_W_C;
   result.inliers = final_sums.inliers;
@@ -142,6 +150,13 @@ TrackResult RgbdTracker::track(DeviceTsdfMap& map, int tsdf_layer, const RgbdFra
   result.rms_m =
       final_sums.inliers > 0 ? std::sqrt(final_sums.residual_sq / final_sums.inliers) : 0.0;
   result.min_eigenvalue = solveGaussNewton(final_system).min_eigenvalue;
+  result.covariance =
+      config_.covariance_scale *
+      poseCovariance(final_system,
+                     static_cast<double>(final_sums.inliers) + final_photometric.inliers);
+  result.translation_sigma_m = std::sqrt(largestEigenvalue(result.covariance.topLeftCorner<3, 3>()));
+  result.rotation_sigma_deg =
+      std::sqrt(largestEigenvalue(result.covariance.bottomRightCorner<3, 3>())) * 180.0 / M_PI;
   judge(T_W_C_guess, &result);
   return finish(result);
 }

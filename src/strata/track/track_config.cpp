@@ -33,6 +33,8 @@ void TrackConfig::validate() const {
           "min_inlier_fraction must be in [0, 1]");
   require(max_rms_m > 0.0, "max_rms_m must be > 0");
   require(min_eigenvalue >= 0.0, "min_eigenvalue must be >= 0");
+  require(std::isfinite(covariance_scale) && covariance_scale > 0.0,
+          "covariance_scale must be > 0");
   require(max_translation_jump_m > 0.0, "max_translation_jump_m must be > 0");
   require(max_rotation_jump_deg > 0.0, "max_rotation_jump_deg must be > 0");
 }
