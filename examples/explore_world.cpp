@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
     const strata::sim::World world = strata::sim::World::load(world_path);
     ex::ExplorationConfig config;
     config.time_limit_s = argc > 2 ? std::strtod(argv[2], nullptr) : 60.0;  // simulated seconds
+    config.voxel_size_m = ex::defaultVoxelSize(world);  // 5 cm for small worlds, else 10 cm
     config.validate();
     // Start near the first room's centre at 1.2 m; the truth is the free space reachable from it.
     const Eigen::Vector3f start = ex::defaultStart(world, 1.2f, config);

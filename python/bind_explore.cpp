@@ -89,10 +89,19 @@ PyExplorationRun runFrom(const explore::ExplorationResult& r, const Eigen::Vecto
 }
 
 PyExplorationRun runExploration(const std::string& world_name, const std::string& planner_name,
-                                double time_limit_s, float voxel_size_m, const py::object& start,
+                                double time_limit_s, const py::object& voxel_size, const py::object& start,
                                 double start_yaw_deg, int width, int height, double eval_period_s,
                                 std::uint64_t seed, const py::object& device) {
   auto planner = plannerFor(planner_name, seed);
+  const auto world = sim::loadWorld(sim::findWorld(world_name), 0, 1);
+  // None: the world's default voxel, as strata explore (explore::defaultVoxelSize).
+  if (!voxel_size.is_none() && !py::isinstance<py::float_>(voxel_size) &&
+      !py::isinstance<py::int_>(voxel_size)) {
+    throw InputError("voxel_size_m must be a number or None, not " +
+                     std::string(py::repr(voxel_size)));
+  }
+  const float voxel_size_m = voxel_size.is_none() ? explore::defaultVoxelSize(*world)
+                                                  : voxel_size.cast<float>();
   explore::ExplorationConfig config;
   config.time_limit_s = time_limit_s;
   config.voxel_size_m = voxel_size_m;
@@ -102,7 +111,6 @@ PyExplorationRun runExploration(const std::string& world_name, const std::string
   config.seed = seed;
   config.validate();
   if (!std::isfinite(start_yaw_deg)) throw InputError("start_yaw_deg must be finite");
-  const auto world = sim::loadWorld(sim::findWorld(world_name), 0, 1);
   Eigen::Vector3f start_W;
   if (start.is_none()) {
     start_W = explore::defaultStart(*world, kStartHeightM, config);
@@ -169,14 +177,15 @@ void bindExplore(py::module_& e) {
                std::to_string(r.sim_time_s) + " s, " + r.stop_reason + ")";
       });
   e.def("run", &runExploration, py::arg("world") = "room", py::arg("planner") = "history",
-        py::arg("time_limit_s") = 60.0, py::arg("voxel_size_m") = 0.1f,
+        py::arg("time_limit_s") = 60.0, py::arg("voxel_size_m") = py::none(),
         py::arg("start") = py::none(), py::arg("start_yaw_deg") = 0.0, py::arg("width") = 160,
         py::arg("height") = 120, py::arg("eval_period_s") = 5.0, py::arg("seed") = 1,
         py::arg("device") = py::none(),
         "Explores a simulated world (a shipped name or a world file) with a MAV, as `strata "
         "explore`: planner 'history' or 'nbvp', for time_limit_s simulated seconds (or until "
         "the target share, no gain, stuck), from `start` (3 numbers; None: the first room's "
-        "centre at 1.2 m) facing start_yaw_deg. The GIL is released while it runs; Ctrl-C "
+        "centre at 1.2 m) facing start_yaw_deg; voxel_size_m None: the world's default (5 cm where "
+        "the world is small enough, else 10 cm, as strata explore). The GIL is released while it runs; Ctrl-C "
         "stops it at the next evaluation (every eval_period_s simulated).");
 }
 

@@ -2,6 +2,7 @@
 // input errors of `strata explore`.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <limits>
 
@@ -101,6 +102,36 @@ TEST(ExplorationLoop, InFlightChecksBrakeWhenThePathAheadIsBlocked) {
   EXPECT_EQ(crashed.result.inflight_checks, 0u);
   EXPECT_EQ(crashed.result.brakes, 0u);
   EXPECT_GE(crashed.result.collisions(), 1) << "without the checks the path meets the wall";
+}
+
+TEST(ExplorationLoop, TheNoddingCameraTilesTwiceTheVerticalFieldOfView) {
+  const ExplorationConfig config;
+  EXPECT_FLOAT_EQ(framePitch(config, 0), config.camera_pitch_rad);
+  EXPECT_FLOAT_EQ(framePitch(config, 1), -config.camera_pitch_rad);
+  const RobotPose pose{Eigen::Vector3f(1.0f, 2.0f, 1.2f), 0.5f};
+  const Eigen::Isometry3d up = cameraPose(pose, 0.4f);
+  const Eigen::Vector3d axis = up.linear().col(2);
+  // (sines and cosines of the float angles are float: 1e-7)
+  EXPECT_NEAR(std::asin(axis.z()), 0.4, 1e-6);  // pitched up by 0.4 rad
+  EXPECT_NEAR(std::atan2(axis.y(), axis.x()), 0.5, 1e-6);  // along the yaw
+  EXPECT_NEAR((up.linear().transpose() * up.linear() - Eigen::Matrix3d::Identity()).norm(), 0.0,
+              1e-6);
+  EXPECT_NEAR(up.linear().determinant(), 1.0, 1e-6);
+  EXPECT_LT(up.linear().col(1).z(), 0.0) << "image y still points down";
+  // 160 x 120 at 60 degrees: 46.8 degrees vertically; the two pitches tile +-46.8 degrees, the
+  // gain model's vertical field of view.
+  const double half_v = std::atan(std::tan(0.5 * config.gain.horizontal_fov_rad) * 120.0 / 160.0);
+  EXPECT_NEAR(config.camera_pitch_rad, half_v, 0.01);
+  EXPECT_NEAR(config.gain.vertical_fov_rad, 4.0 * half_v, 0.01);
+}
+
+TEST(ExplorationLoop, DefaultVoxelIsFineWhereTheWorldIsSmall) {
+  // Bounds of the shipped worlds: room (5 x 4 x 2.5 m rooms) and office (12 x 10 x 2.6 m) hold
+  // under 4M voxels of 5 cm, the dead end (32 x 8 x 2.5 m) and the warehouse (20 x 8 x 5 m) over.
+  EXPECT_FLOAT_EQ(defaultVoxelSize(sim::World::load(sim::findWorld("room"))), 0.05f);
+  EXPECT_FLOAT_EQ(defaultVoxelSize(sim::World::load(sim::findWorld("office"))), 0.05f);
+  EXPECT_FLOAT_EQ(defaultVoxelSize(sim::World::load(sim::findWorld("deadend"))), 0.1f);
+  EXPECT_FLOAT_EQ(defaultVoxelSize(sim::World::load(sim::findWorld("warehouse"))), 0.1f);
 }
 
 TEST(ExploreCommand, BadInputIsAnInputError) {

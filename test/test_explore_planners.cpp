@@ -288,6 +288,133 @@ TEST(HistoryPlanner, WithNoFreeEdgeItHoversOnceThenRetracesItsRoute) {
   EXPECT_LT((back.path[0].position_W - start).norm(), 1e-5f);
 }
 
+TEST(HistoryPlanner, PinnedAtTheStartItTurnsInPlaceToLookAround) {
+  PinnableChecker checker;
+  checker.pinned = true;
+  Pockets pockets;
+  HistoryPlanner planner(corridorConfig());
+  ExplorationState state = corridorState(checker, pockets);
+  state.pose = {Eigen::Vector3f(0.0f, 0.0f, 1.0f), 0.3f};
+  const ExplorationStep hover = planner.plan(state);
+  EXPECT_TRUE(hover.path.empty());
+  const ExplorationStep turn = planner.plan(state);
+  EXPECT_EQ(turn.mode, "turn") << "no route flown yet to retrace";
+  ASSERT_EQ(turn.path.size(), 1u);
+  EXPECT_LT((turn.path[0].position_W - state.pose.position_W).norm(), 1e-6f) << "in place";
+  EXPECT_NEAR(wrapAngle(turn.path[0].yaw_rad - state.pose.yaw_rad), 2.0944f, 1e-4f);
+  EXPECT_FALSE(turn.finished);
+}
+
+TEST(HistoryPlanner, AGlobalStepFindsViewsBeyondTheTreeBeforeItStops) {
+  // A pocket at x = 4 that the tree (box +-1 m in x) never reaches and nothing cached knows:
+  // only the global step's samples over the whole bounds find it.
+  auto run = [](int global_samples) {
+    CorridorChecker checker;
+    Pockets pockets;
+    pockets.centres = {{4.0f, 0.0f, 1.0f}};
+    pockets.consumed = {false};
+    HistoryConfig config = corridorConfig();
+    config.tree.half_extent_m = Eigen::Vector3f(1.0f, 1.0f, 0.5f);
+    config.global_samples = global_samples;
+    config.global_join_radius_m = 5.0f;  // the graph is only the robot's few places here
+    HistoryPlanner planner(config);
+    ExplorationState state = corridorState(checker, pockets);
+    state.pose.position_W = Eigen::Vector3f(-1.0f, 0.0f, 1.0f);
+    CorridorRun result;
+    for (int step = 0; step < 40 && !result.finished; ++step) {
+      const ExplorationStep s = planner.plan(state);
+      result.modes.insert(s.mode);
+      result.finished = s.finished;
+      for (const Waypoint& w : s.path) {
+        EXPECT_TRUE(checker.segmentFree(state.pose.position_W, w.position_W,
+                                        state.check_radius_m, UnknownPolicy::kOccupied));
+        state.pose = {w.position_W, w.yaw_rad};
+        pockets.visit(w.position_W);
+      }
+    }
+    result.consumed = pockets.consumed;
+    return result;
+  };
+  const CorridorRun with = run(96);
+  EXPECT_TRUE(with.consumed[0]);
+  EXPECT_TRUE(with.modes.count("global"));
+  EXPECT_TRUE(with.finished) << "and it stops once the pocket is seen";
+  const CorridorRun without = run(0);
+  EXPECT_FALSE(without.consumed[0]) << "the old stop: no gain in the tree nor the cache";
+  EXPECT_TRUE(without.finished);
+}
+
+/// A tall hall, |x|, |y| <= 4 m, z in [0, 5] m, all known free.
+class HallChecker final : public plan::CollisionChecker {
+ public:
+  static float clearance(const Eigen::Vector3f& p) {
+    return std::min({4.0f - std::abs(p.x()), 4.0f - std::abs(p.y()), p.z(), 5.0f - p.z()});
+  }
+  std::vector<std::uint8_t> spheresFree(const std::vector<Eigen::Vector3f>& centres, float radius_m,
+                                        UnknownPolicy) override {
+    std::vector<std::uint8_t> out;
+    for (const auto& c : centres) out.push_back(clearance(c) > radius_m ? 1 : 0);
+    return out;
+  }
+  std::vector<EsdfSample> sample(const std::vector<Eigen::Vector3f>& points) override {
+    std::vector<EsdfSample> out;
+    for (const auto& p : points) {
+      EsdfSample s;
+      s.status = EsdfStatus::kKnown;
+      s.distance_m = clearance(p);
+      s.gradient = Eigen::Vector3f::Zero();
+      out.push_back(s);
+    }
+    return out;
+  }
+  float voxelSize() const override { return 0.1f; }
+  float maxDistance() const override { return 2.0f; }
+};
+
+TEST(HistoryPlanner, ClimbsToTheUnseenTopOfATallHall) {
+  // Only views above 3 m gain (the racks' tops); the robot starts at 1.2 m.
+  Pockets oracle;
+  auto gains = [&oracle](const std::vector<Eigen::Vector3f>& positions) {
+    std::vector<ViewGain> out;
+    for (const auto& p : positions) {
+      ViewGain v;
+      const float g = p.z() > 3.0f ? 4.0f : 0.0f;
+      v.bin_gain_m3.assign(static_cast<std::size_t>(oracle.config.yaw_bins), g / 6.0f);
+      v.best_gain_m3 = g;
+      out.push_back(v);
+    }
+    return out;
+  };
+  auto highest = [&](float full_height_share) {
+    HallChecker checker;
+    HistoryConfig config;
+    config.tree.full_height_share = full_height_share;
+    config.global_samples = 0;  // the tree alone
+    HistoryPlanner planner(config);
+    ExplorationState state;
+    state.check_radius_m = 0.4f;
+    state.bounds_W = Eigen::AlignedBox3f(Eigen::Vector3f(-3.7f, -3.7f, 0.3f),
+                                         Eigen::Vector3f(3.7f, 3.7f, 4.7f));
+    state.checker = &checker;
+    state.gain_config = oracle.config;
+    state.gain = gains;
+    state.pose.position_W = Eigen::Vector3f(0.0f, 0.0f, 1.2f);
+    float top = state.pose.position_W.z();
+    for (int step = 0; step < 6; ++step) {
+      const ExplorationStep s = planner.plan(state);
+      for (const Waypoint& w : s.path) {
+        state.pose = {w.position_W, w.yaw_rad};
+        top = std::max(top, w.position_W.z());
+      }
+    }
+    return top;
+  };
+  // Measured 2026-12-07: the default tree (half its samples over the whole height) flies above
+  // 3 m within 6 steps; the box alone (+-0.6 m) never leaves 1.8 m and finds no gain.
+  EXPECT_GT(highest(HistoryConfig{}.tree.full_height_share), 3.0f);
+  EXPECT_LE(highest(0.0f), 1.2f + 0.6f + 1e-4f);
+}
+
 TEST(NbvpPlanner, FliesTheFirstEdgeTowardsGainAndStopsWithoutGain) {
   CorridorChecker checker;
   Pockets pockets;

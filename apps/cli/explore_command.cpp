@@ -90,7 +90,7 @@ std::optional<explore::DeadEnd> deadEndFor(const std::optional<DeadEndOption>& o
 explore::ExplorationConfig loopConfig(const ExploreOptions& o) {
   explore::ExplorationConfig c;
   c.time_limit_s = o.time_limit_s;
-  c.voxel_size_m = o.voxel_size_m;
+  if (o.voxel_size_m > 0.0f) c.voxel_size_m = o.voxel_size_m;
   c.camera_width_px = o.camera_width_px;
   c.camera_height_px = o.camera_height_px;
   c.eval_period_s = o.eval_period_s;
@@ -175,7 +175,9 @@ void checkOptions(const ExploreOptions& o) {
     throw InputError("--planner: unknown planner '" + o.planner + "' (choose history or nbvp)");
   }
   requireNumber(o.time_limit_s, "--time-limit", "simulated seconds", 0.0, false);
-  requireNumberIn(o.voxel_size_m, "--voxel", "metres", 0.001, 1.0);  // MapConfig's range
+  if (o.voxel_size_m != 0.0f) {
+    requireNumberIn(o.voxel_size_m, "--voxel", "metres", 0.001, 1.0);  // MapConfig's range
+  }
   requireNumber(o.eval_period_s, "--eval-period", "simulated seconds", 0.0, false);
   if (!std::isfinite(o.start_yaw_deg)) {
     throw InputError("--start-yaw must be a finite angle in degrees, not " +
@@ -199,7 +201,7 @@ void checkOutputs(const ExploreOptions& o, const std::vector<std::string>& plann
 
 int runChecked(const ExploreOptions& o) {
   checkOptions(o);
-  const explore::ExplorationConfig config = loopConfig(o);
+  explore::ExplorationConfig config = loopConfig(o);
   const std::optional<Eigen::Vector3f> tree_box = parseTreeBox(o.tree_box);
   const std::optional<DeadEndOption> dead_end_option = parseDeadEndOption(o);
   std::vector<std::string> planners = {o.planner};
@@ -207,13 +209,14 @@ int runChecked(const ExploreOptions& o) {
   checkOutputs(o, planners);
   if (!fs::exists(o.world_path)) throw InputError("world file '" + o.world_path + "' not found");
   const auto world = sim::loadWorld(o.world_path, 0, 1);
+  if (o.voxel_size_m == 0.0f) config.voxel_size_m = explore::defaultVoxelSize(*world);
   const Eigen::Vector3f start = o.start.empty()
                                     ? explore::defaultStart(*world, kDefaultStartHeightM, config)
                                     : parseStart(o.start);
   const std::optional<explore::DeadEnd> dead_end = deadEndFor(dead_end_option, start);
   const Eigen::AlignedBox3d b = world->bounds();
   const explore::ExplorationTruth truth(*world, {b.min().cast<float>(), b.max().cast<float>()},
-                                        start, o.voxel_size_m);
+                                        start, config.voxel_size_m);
   vk::ContextOptions context_options;
   context_options.device_selector = o.device;
   const auto context = vk::Context::create(context_options);
@@ -253,8 +256,9 @@ CLI::App* addExploreCommand(CLI::App& app, ExploreOptions& o) {
   cmd->add_option("--time-limit", o.time_limit_s, "Simulated seconds per run (> 0)")
       ->capture_default_str()
       ->check(finiteNumber());
-  cmd->add_option("--voxel", o.voxel_size_m, "Voxel size of the map and the truth, metres (> 0)")
-      ->capture_default_str()
+  cmd->add_option("--voxel", o.voxel_size_m,
+                  "Voxel size of the map and the truth, metres (> 0); default 0.05 for worlds "
+                  "whose bounds hold at most 4M such voxels, else 0.1")
       ->check(finiteNumber());
   cmd->add_option("--start", o.start,
                   "Start X,Y,Z (metres); default: nearest the first room's centre at 1.2 m with "

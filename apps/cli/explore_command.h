@@ -20,7 +20,7 @@ struct ExploreOptions {
   bool compare = false;             // both planners
   unsigned long long seed = 1;      // planners' sampling and the camera's noise
   double time_limit_s = 600.0;      // simulated
-  float voxel_size_m = 0.1f;
+  float voxel_size_m = 0.0f;  // 0: explore::defaultVoxelSize of the world
   std::string start;           // "X,Y,Z" metres; "" = defaultStart of the world
   double start_yaw_deg = 0.0;  // heading at the start, about world z from +x
   std::string dead_end;  // "X0,Y0,X1,Y1" metres: a dead end from above to time the escape from

@@ -1,5 +1,5 @@
 # Type stubs of strata.explore (see __init__.pyi).
-from typing import Union
+from typing import Optional, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -41,6 +41,6 @@ class ExplorationRun:
     def mesh(self) -> Mesh: ...
 
 def run(world: str = "room", planner: str = "history", time_limit_s: float = 60.0,
-        voxel_size_m: float = 0.1, start: npt.ArrayLike = None, start_yaw_deg: float = 0.0,
+        voxel_size_m: Optional[float] = None, start: npt.ArrayLike = None, start_yaw_deg: float = 0.0,
         width: int = 160, height: int = 120, eval_period_s: float = 5.0, seed: int = 1,
         device: Union[None, int, str] = None) -> ExplorationRun: ...

@@ -96,7 +96,8 @@ bool ExplorationLoop::pathAheadBlocked() {
 }
 
 void ExplorationLoop::fuseFrame(double sim_time_s, std::uint64_t index) {
-  const Eigen::Isometry3d T_W_C = cameraPose(impl_->follower.pose());
+  const Eigen::Isometry3d T_W_C =
+      cameraPose(impl_->follower.pose(), framePitch(config_, index));
   sim::SimulatedFrame frame =
       impl_->camera.render(truth_.scene(), T_W_C, impl_->lighting, config_.seed * 1000003u + index);
   const RgbdFrame rgbd =

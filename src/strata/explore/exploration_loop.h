@@ -1,18 +1,19 @@
 #pragma once
-// Closed-loop exploration in the simulator: a MAV (robot_model.h) with a horizontal RGB-D camera
-// along its yaw flies what an ExplorationPlanner asks; frames are rendered from session 0 of a
-// world and fused by a Mapper (TSDF with free space, incremental ESDF) at the camera rate; the
-// ESDF is brought up to date before each planning step; the planner is asked when the robot has
+// Closed-loop exploration in the simulator: a MAV (robot_model.h) with an RGB-D camera along its
+// yaw, nodding up and down by camera_pitch_rad from frame to frame, flies what an
+// ExplorationPlanner asks; frames are rendered from session 0 of a world and fused by a Mapper
+// (TSDF with free space, incremental ESDF) at the camera rate; the ESDF is brought up to date
+// before each planning step; the planner is asked when the robot has
 // flown its path, or every replan period at a waypoint. Paths go through known free space only
 // (kOccupied capsules of radius + margin). The run stops at the time limit, when the explored
 // share of the reachable free space reaches the target, when the planner finds no gain anywhere,
 // or when it has had nothing to fly for max_idle_steps steps in a row.
 // Start clearing: the free space around the start (a vertical cylinder, voxels free in truth) is
 // entered in the map as observed before the first frame, as NBVP clears a box around its start:
-// the camera (vertical field of view 47 degrees) cannot see the space just above and below the
-// robot, and without it no path could leave the start under kOccupied. Voxels of the cylinder
-// near a solid stay unknown. The loop refuses a start closer than startClearanceNeeded to a
-// surface.
+// the camera (+-47 degrees about the horizon over two frames) cannot see the space just above
+// and below the robot, and without it no path could leave the start under kOccupied. Voxels of
+// the cylinder near a solid stay unknown. The loop refuses a start closer than
+// startClearanceNeeded to a surface.
 // Time is simulated; compute times are wall clock.
 // Thread safety: not thread safe.
 #include <Eigen/Geometry>
@@ -41,11 +42,20 @@ struct ExplorationConfig {
   static constexpr float kMarginVoxels = 1.0f;
   /// Robot radius + the margin: the radius of every collision check of the planners.
   float checkRadius() const;
+  /// Voxel of the map (metres). `strata explore` and the example use defaultVoxelSize(world):
+  /// 5 cm for worlds as small as the office, whose 0.9 m doors 10 cm voxels do not pass.
   float voxel_size_m = 0.1f;
   /// The simulated camera: a smaller image renders and fuses faster; the field of view
-  /// follows the gain model's (horizontal_fov_rad; the vertical one from the aspect ratio).
+  /// follows the gain model's (horizontal_fov_rad; the vertical one from the aspect ratio:
+  /// 46.8 degrees at 160 x 120).
   int camera_width_px = 160;
   int camera_height_px = 120;
+  /// A nodding camera: frames alternate between this pitch up and this pitch down (radians,
+  /// 0: horizontal), so that two frames in a row tile +-(pitch + half the vertical field of
+  /// view); at 0.41 rad they cover +-46.8 degrees, and the gain model's vertical field of view
+  /// (coarseGain) is that. A horizontal camera sees nothing above 3.2 m from 1.2 m at 5 m range,
+  /// and the space above the robot only from far off: a 5 m hall's upper third went unseen.
+  float camera_pitch_rad = 0.41f;
   float camera_min_range_m = 0.3f;
   float camera_max_range_m = 5.0f;
   double camera_rate_hz = 5.0;
@@ -186,7 +196,19 @@ Eigen::Vector3f defaultStart(const sim::World& world, float height_m,
 /// The true clearance a start needs: the check radius and 0.2 m (metres).
 float startClearanceNeeded(const ExplorationConfig& config);
 
-/// The camera-to-world pose of the robot's camera (optical axis along the yaw, horizontal).
-Eigen::Isometry3d cameraPose(const RobotPose& pose);
+/// The default voxel for exploring `world` (metres): kFineVoxelM where a grid of it over the
+/// world's bounds holds at most kFineVoxelBudget voxels, else kCoarseVoxelM. At 10 cm a 0.9 m
+/// door does not pass the 0.4 m check radius (the ESDF's sites lie up to a voxel in front of the
+/// true surfaces, and the margin is a voxel); at 5 cm it does, at ~8x the map's voxels.
+inline constexpr float kFineVoxelM = 0.05f;
+inline constexpr float kCoarseVoxelM = 0.1f;
+inline constexpr double kFineVoxelBudget = 4.0e6;
+float defaultVoxelSize(const sim::World& world);
+
+/// The camera-to-world pose of the robot's camera: optical axis along the yaw, pitched up by
+/// pitch_rad (negative: down), image x to the right of the heading.
+Eigen::Isometry3d cameraPose(const RobotPose& pose, float pitch_rad = 0.0f);
+/// The pitch of frame `index` of the nodding camera: +pitch for even frames, -pitch for odd.
+float framePitch(const ExplorationConfig& config, std::uint64_t index);
 
 }  // namespace strata::explore

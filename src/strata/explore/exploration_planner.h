@@ -40,7 +40,8 @@ struct ExplorationStep {
   /// The planner finds no gain anywhere: exploration is over.
   bool finished = false;
   /// "local" (receding-horizon step), "global" (to a cached view), "continue" (rest of a global
-  /// path), "back" (no free edge from here twice: back along the route flown here), "none".
+  /// path), "back" (no free edge from here twice: back along the route flown here), "turn" (no
+  /// free edge twice and no route flown yet: turn in place to look around), "none".
   std::string mode = "none";
   /// Best single-view gain the step found (m^3).
   float best_gain_m3 = 0.0f;

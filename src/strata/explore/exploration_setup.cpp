@@ -56,6 +56,12 @@ void requireClearStart(const sim::WorldScene& scene, const Eigen::Vector3f& star
 
 float startClearanceNeeded(const ExplorationConfig& config) { return config.checkRadius() + 0.2f; }
 
+float defaultVoxelSize(const sim::World& world) {
+  const double fine = kFineVoxelM;
+  const double voxels = world.bounds().sizes().prod() / (fine * fine * fine);
+  return voxels <= kFineVoxelBudget ? kFineVoxelM : kCoarseVoxelM;
+}
+
 Eigen::Vector3f defaultStart(const sim::World& world, float height_m,
                              const ExplorationConfig& config) {
   const sim::RoomSpec& room = world.spec().rooms.front();
@@ -86,6 +92,8 @@ ViewGainConfig ExplorationConfig::coarseGain() {
   g.yaw_bins = 36;
   g.rays_per_bin = 1;
   g.elevation_rays = 8;
+  // The nodding camera's two frames (camera_pitch_rad = 0.41 rad, 46.8 degrees each).
+  g.vertical_fov_rad = 1.636f;
   return g;
 }
 
@@ -112,15 +120,24 @@ void ExplorationConfig::validate() const {
     throw InputError("start clearing sizes must be > 0");
   }
   if (max_idle_steps < 1) throw InputError("max_idle_steps must be >= 1");
+  if (!(camera_pitch_rad >= 0.0f && camera_pitch_rad < 1.2f)) {
+    throw InputError("camera_pitch_rad must be in [0, 1.2) rad");
+  }
   if (!positive(inflight_lookahead_m)) throw InputError("inflight_lookahead_m must be > 0");
 }
 
-Eigen::Isometry3d cameraPose(const RobotPose& pose) {
+float framePitch(const ExplorationConfig& config, std::uint64_t index) {
+  return index % 2 == 0 ? config.camera_pitch_rad : -config.camera_pitch_rad;
+}
+
+Eigen::Isometry3d cameraPose(const RobotPose& pose, float pitch_rad) {
   const double c = std::cos(pose.yaw_rad), s = std::sin(pose.yaw_rad);
+  const double cp = std::cos(pitch_rad), sp = std::sin(pitch_rad);
+  const Eigen::Vector3d forward(c, s, 0.0), up(0.0, 0.0, 1.0);
   Eigen::Matrix3d R;
-  R.col(0) = Eigen::Vector3d(s, -c, 0.0);      // image x: to the right of the heading
-  R.col(1) = Eigen::Vector3d(0.0, 0.0, -1.0);  // image y: down
-  R.col(2) = Eigen::Vector3d(c, s, 0.0);       // optical axis: the heading
+  R.col(0) = Eigen::Vector3d(s, -c, 0.0);   // image x: to the right of the heading
+  R.col(1) = -cp * up + sp * forward;       // image y: down, tilted with the pitch
+  R.col(2) = cp * forward + sp * up;        // optical axis: the heading, pitched
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   T.linear() = R;
   T.translation() = pose.position_W.cast<double>();

@@ -34,8 +34,18 @@ float bestNodeGain(const LocalTree& tree) {
 
 }  // namespace
 
+LocalTreeConfig HistoryConfig::tallTree() {
+  LocalTreeConfig tree;
+  tree.full_height_share = 0.5f;
+  return tree;
+}
+
 void HistoryConfig::validate() const {
   tree.validate();
+  if (global_samples < 0) throw InputError("history global_samples must be >= 0");
+  if (!(global_join_radius_m > 0.0f) || !std::isfinite(global_join_radius_m)) {
+    throw InputError("history global_join_radius_m must be > 0");
+  }
   for (float v : {local_gain_m3, cache_gain_m3, prune_gain_m3, done_gain_m3, distance_offset_m,
                   cache_spacing_m, shortcut_radius_m}) {
     if (!finiteNonNegative(v)) throw InputError("history planner: gains and distances >= 0");
@@ -147,6 +157,78 @@ int HistoryPlanner::pickCached(const ExplorationState& state, const std::vector<
   return best;
 }
 
+int HistoryPlanner::sampleGlobalViews(const ExplorationState& state, std::size_t& evaluations) {
+  if (config_.global_samples == 0 || state.bounds_W.isEmpty()) return 0;
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  std::vector<Eigen::Vector3f> drawn;
+  for (int i = 0; i < config_.global_samples; ++i) {
+    const Eigen::Vector3f t(u(rng_), u(rng_), u(rng_));
+    drawn.push_back(state.bounds_W.min() + t.cwiseProduct(state.bounds_W.sizes()));
+  }
+  const std::vector<std::uint8_t> free =
+      state.checker->spheresFree(drawn, state.check_radius_m, UnknownPolicy::kOccupied);
+  std::vector<Eigen::Vector3f> known;
+  for (std::size_t i = 0; i < drawn.size(); ++i) {
+    if (free[i]) known.push_back(drawn[i]);
+  }
+  if (known.empty()) return 0;
+  const std::vector<ViewGain> gains = state.gain(known);
+  evaluations += known.size();
+  // Joins of the views worth caching to their nearest graph nodes, all in one checker call.
+  struct Join {
+    std::size_t view;
+    int node;
+  };
+  std::vector<Join> joins;
+  std::vector<EsdfSegment> segments;
+  for (std::size_t i = 0; i < known.size(); ++i) {
+    if (gains[i].best_gain_m3 < config_.cache_gain_m3) continue;
+    for (int node : graph_.near(known[i], config_.global_join_radius_m, 4)) {
+      joins.push_back({i, node});
+      segments.push_back({known[i], graph_.position(node)});
+    }
+  }
+  if (segments.empty()) return 0;
+  const std::vector<std::uint8_t> joined =
+      state.checker->segmentsFree(segments, state.check_radius_m, UnknownPolicy::kOccupied);
+  int added = 0;
+  std::vector<int> id(known.size(), -1);
+  for (std::size_t k = 0; k < joins.size(); ++k) {
+    if (!joined[k]) continue;
+    const std::size_t i = joins[k].view;
+    if (id[i] < 0) {
+      id[i] = graph_.addNode(known[i]);
+      cache_[id[i]] = {gains[i].best_gain_m3, gains[i].best_yaw_rad};
+      ++added;
+    }
+    graph_.addEdge(id[i], joins[k].node);
+  }
+  return added;
+}
+
+bool HistoryPlanner::goToCachedView(const ExplorationState& state, int here,
+                                    ExplorationStep& step) {
+  std::vector<int> parents;
+  const std::vector<double> distance = graph_.shortestFrom(here, parents);
+  for (int target; (target = pickCached(state, distance, step.gain_evaluations)) >= 0;) {
+    const std::vector<int> path = freeGraphPath(state, here, target);
+    if (path.empty()) {
+      cache_.erase(target);  // not reachable through known free space any more
+      continue;
+    }
+    global_path_.assign(path.begin() + 1, path.end());
+    target_node_ = target;
+    for (int node : global_path_) step.path.push_back({graph_.position(node), 0.0f});
+    // Turn to the cached view's best yaw on the way (the last waypoint's yaw).
+    for (Waypoint& w : step.path) w.yaw_rad = cache_[target].yaw_rad;
+    step.mode = "global";
+    steps_without_gain_ = 0;
+    rememberRoute(state, step.path);
+    return true;
+  }
+  return false;
+}
+
 std::vector<int> HistoryPlanner::freeGraphPath(const ExplorationState& state, int here,
                                                int target) {
   // Edges were free when added; the map may have changed since, so check the path and route
@@ -196,6 +278,7 @@ ExplorationStep HistoryPlanner::plan(const ExplorationState& state) {
   tree.seedBranch(previous_branch_W_, *state.checker, state.check_radius_m);
   tree.grow(config_.tree.nodes,
             localBox(state.pose.position_W, config_.tree.half_extent_m, state.bounds_W),
+            fullHeightBox(state.pose.position_W, config_.tree.half_extent_m, state.bounds_W),
             config_.tree, *state.checker, state.check_radius_m, rng_);
   step.gain_evaluations = evaluateBestYaw(tree, state);
   step.tree_nodes = tree.size() - 1;
@@ -207,22 +290,11 @@ ExplorationStep HistoryPlanner::plan(const ExplorationState& state) {
   previous_branch_W_.clear();
 
   if (step.best_gain_m3 < config_.local_gain_m3) {
-    std::vector<int> parents;
-    const std::vector<double> distance = graph_.shortestFrom(here, parents);
-    for (int target; (target = pickCached(state, distance, step.gain_evaluations)) >= 0;) {
-      const std::vector<int> path = freeGraphPath(state, here, target);
-      if (path.empty()) {
-        cache_.erase(target);  // not reachable through known free space any more
-        continue;
-      }
-      global_path_.assign(path.begin() + 1, path.end());
-      target_node_ = target;
-      for (int node : global_path_) step.path.push_back({graph_.position(node), 0.0f});
-      // Turn to the cached view's best yaw on the way (the last waypoint's yaw).
-      for (Waypoint& w : step.path) w.yaw_rad = cache_[target].yaw_rad;
-      step.mode = "global";
-      steps_without_gain_ = 0;
-      rememberRoute(state, step.path);
+    if (goToCachedView(state, here, step)) return step;
+    // Nothing cached: views anywhere in the known free space the graph reaches.
+    if (step.best_gain_m3 < config_.done_gain_m3 &&
+        sampleGlobalViews(state, step.gain_evaluations) > 0 &&
+        goToCachedView(state, here, step)) {
       return step;
     }
     if (step.best_gain_m3 < config_.done_gain_m3 && best > 0) {
@@ -237,11 +309,19 @@ ExplorationStep HistoryPlanner::plan(const ExplorationState& state) {
     // the robot flew here. A warehouse run hovered for good where the map had since put a
     // surface inside the check radius of every edge from the robot; the route it arrived along
     // was flown without a collision moments before (a straight line to an older place need not
-    // be: a first version that flew one cut into a rack).
+    // be: a first version that flew one cut into a rack). Without a route (at the start) it
+    // turns in place by a third of a turn instead, so that the camera sees what lies around
+    // it: a warehouse start facing a crate hovered there until "stuck".
     if (++empty_trees_ >= 2) {
-      step.path = retraceRoute(state);
-      if (!step.path.empty()) step.mode = "back";
       empty_trees_ = 0;
+      step.path = retraceRoute(state);
+      if (!step.path.empty()) {
+        step.mode = "back";
+      } else {
+        constexpr float kTurnRad = 2.0944f;  // 120 degrees
+        step.path = {{state.pose.position_W, wrapAngle(state.pose.yaw_rad + kTurnRad)}};
+        step.mode = "turn";
+      }
     }
     return step;
   }

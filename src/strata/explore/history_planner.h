@@ -9,7 +9,10 @@
 // gain / (path length + distance_offset_m) and flies the graph's shortest path there. Cached
 // gains are re-evaluated lazily: gains only shrink as the map fills, so a stored gain bounds the
 // current one and candidates are re-evaluated best bound first, in batches, until the best
-// current score beats every remaining bound; views below prune_gain_m3 are dropped.
+// current score beats every remaining bound; views below prune_gain_m3 are dropped. When
+// neither the tree nor the cache has gain, a global step samples the whole bounds for views in
+// known free space that the graph can reach (HistoryConfig::global_samples); the run ends only
+// when that finds none either. Half the tree's samples span the bounds' whole height.
 // Parameters (HistoryConfig) are documented in docs/explore.md, "Planners".
 // Thread safety: not thread safe.
 #include <cstdint>
@@ -23,7 +26,8 @@
 namespace strata::explore {
 
 struct HistoryConfig {
-  LocalTreeConfig tree;
+  /// The local tree; half its samples span the bounds' whole height (full_height_share).
+  LocalTreeConfig tree = tallTree();
   /// Below this best local view gain (m^3) the planner goes to a cached view.
   float local_gain_m3 = 1.0f;
   /// Nodes whose view gains at least this (m^3) are cached.
@@ -44,8 +48,15 @@ struct HistoryConfig {
   float shortcut_radius_m = 2.0f;
   /// ... at most this many per step.
   int shortcut_count = 6;
+  /// Global step: with no local and no cached view left, this many positions are drawn over
+  /// the whole bounds; those in known free space whose view gains at least cache_gain_m3 and
+  /// that join the graph by a free segment (to a node within global_join_radius_m) become
+  /// cached views. The run ends ("no gain") only when this finds none either.
+  int global_samples = 96;
+  float global_join_radius_m = 3.0f;
   std::uint64_t seed = 1;
 
+  static LocalTreeConfig tallTree();
   /// Throws InputError naming the bad field.
   void validate() const;
 };
@@ -72,6 +83,10 @@ class HistoryPlanner final : public ExplorationPlanner {
   /// The cached view to go to (-1: none worth it); `distance` from shortestFrom.
   int pickCached(const ExplorationState& state, const std::vector<double>& distance,
                  std::size_t& evaluations);
+  /// The global step (HistoryConfig::global_samples): cached views added.
+  int sampleGlobalViews(const ExplorationState& state, std::size_t& evaluations);
+  /// A cached view to fly to now (the step's path and mode set), or false.
+  bool goToCachedView(const ExplorationState& state, int here, ExplorationStep& step);
   /// The checked graph path from `here` to `target` (empty when none stays free).
   std::vector<int> freeGraphPath(const ExplorationState& state, int here, int target);
 

@@ -63,12 +63,25 @@ void LocalTreeConfig::validate() const {
   if (!(lambda_per_m >= 0.0f) || !std::isfinite(lambda_per_m)) {
     throw InputError("local tree lambda_per_m must be >= 0");
   }
+  if (!(full_height_share >= 0.0f && full_height_share <= 1.0f)) {
+    throw InputError("local tree full_height_share must be in [0, 1]");
+  }
 }
 
 Eigen::AlignedBox3f localBox(const Eigen::Vector3f& centre_W, const Eigen::Vector3f& half_extent_m,
                              const Eigen::AlignedBox3f& bounds_W) {
   const Eigen::AlignedBox3f box(centre_W - half_extent_m, centre_W + half_extent_m);
   return box.intersection(bounds_W);
+}
+
+Eigen::AlignedBox3f fullHeightBox(const Eigen::Vector3f& centre_W,
+                                  const Eigen::Vector3f& half_extent_m,
+                                  const Eigen::AlignedBox3f& bounds_W) {
+  Eigen::AlignedBox3f box = localBox(centre_W, half_extent_m, bounds_W);
+  if (box.isEmpty()) return box;
+  box.min().z() = bounds_W.min().z();
+  box.max().z() = bounds_W.max().z();
+  return box;
 }
 
 LocalTree::LocalTree(const Eigen::Vector3f& root_W) {
@@ -127,13 +140,22 @@ void LocalTree::seedBranch(const std::vector<Eigen::Vector3f>& chain_W,
 void LocalTree::grow(int target_nodes, const Eigen::AlignedBox3f& box_W,
                      const LocalTreeConfig& config, plan::CollisionChecker& checker, float radius_m,
                      std::mt19937_64& rng) {
+  grow(target_nodes, box_W, box_W, config, checker, radius_m, rng);
+}
+
+void LocalTree::grow(int target_nodes, const Eigen::AlignedBox3f& box_W,
+                     const Eigen::AlignedBox3f& tall_box_W, const LocalTreeConfig& config,
+                     plan::CollisionChecker& checker, float radius_m, std::mt19937_64& rng) {
   if (box_W.isEmpty()) return;
+  std::uniform_real_distribution<float> which(0.0f, 1.0f);
   for (int call = 0; call < config.max_batches; ++call) {
     if (static_cast<int>(nodes_.size()) - 1 >= target_nodes) return;
     std::vector<Candidate> candidates;
     std::vector<EsdfSegment> segments;
     for (int i = 0; i < config.batch; ++i) {
-      const Eigen::Vector3f sample = sampleBox(box_W, rng);
+      const bool tall = config.full_height_share > 0.0f && !tall_box_W.isEmpty() &&
+                        which(rng) < config.full_height_share;
+      const Eigen::Vector3f sample = sampleBox(tall ? tall_box_W : box_W, rng);
       const int parent = nearest(sample);
       const Candidate c = steer(sample, parent, nodes_[parent].position_W, config);
       if (c.parent < 0) continue;

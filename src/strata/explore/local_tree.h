@@ -37,6 +37,10 @@ struct LocalTreeConfig {
   float push_max_m = 0.3f;
   /// Discount of a view's gain per metre of branch (1/m).
   float lambda_per_m = 0.5f;
+  /// Share of the samples drawn over the whole height of the bounds (the box's x and y), the
+  /// rest inside the box: views above and below the robot in a tall space, while the box keeps
+  /// the tree dense around it. 0: the box only (NBVP's tree).
+  float full_height_share = 0.0f;
 
   /// Throws InputError naming the bad field.
   void validate() const;
@@ -66,7 +70,11 @@ class LocalTree {
   void seedBranch(const std::vector<Eigen::Vector3f>& chain_W, plan::CollisionChecker& checker,
                   float radius_m);
   /// Grows until size() - 1 reaches target_nodes or max_batches checker calls were made.
+  /// Samples fall in box_W, or with probability config.full_height_share in tall_box_W.
   void grow(int target_nodes, const Eigen::AlignedBox3f& box_W, const LocalTreeConfig& config,
+            plan::CollisionChecker& checker, float radius_m, std::mt19937_64& rng);
+  void grow(int target_nodes, const Eigen::AlignedBox3f& box_W,
+            const Eigen::AlignedBox3f& tall_box_W, const LocalTreeConfig& config,
             plan::CollisionChecker& checker, float radius_m, std::mt19937_64& rng);
 
   /// score = parent's score + gain * exp(-lambda * cost), root first (parents precede children).
@@ -92,5 +100,9 @@ class LocalTree {
 /// The box around `centre` clipped to `bounds` (empty when they do not overlap).
 Eigen::AlignedBox3f localBox(const Eigen::Vector3f& centre_W, const Eigen::Vector3f& half_extent_m,
                              const Eigen::AlignedBox3f& bounds_W);
+/// The same box in x and y, over the whole height of `bounds` in z.
+Eigen::AlignedBox3f fullHeightBox(const Eigen::Vector3f& centre_W,
+                                  const Eigen::Vector3f& half_extent_m,
+                                  const Eigen::AlignedBox3f& bounds_W);
 
 }  // namespace strata::explore
