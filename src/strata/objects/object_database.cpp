@@ -246,6 +246,9 @@ ObjectDatabase::Match ObjectDatabase::bestMatch(const ObjectObservation& observa
                                                 std::vector<Match>& also_accepted) const {
   Match best;
   std::vector<Match> accepted;
+  const auto scoreFitness = [this](const RegistrationResult& r) {
+    return config_.score_both_ways ? std::max(r.fitness, r.target_coverage) : r.fitness;
+  };
   const std::vector<int> candidates =
       prefilter_.candidates(observation.extent_m, observation.mean_color);
   outcome.candidates = static_cast<int>(candidates.size());
@@ -261,23 +264,42 @@ ObjectDatabase::Match ObjectDatabase::bestMatch(const ObjectObservation& observa
     if (!observed) {
       observed.emplace(observation.surface_O, config_.registration, "observation's cloud");
     }
-    const RegistrationResult registration =
+    const RegistrationResult primary =
         registerSurfaces(*observed, modelFeatures(*model), config_.registration,
                          floorHeightShift(observation, *model));
-    if (!registration.converged) {
-      appendRefusal(outcome.refused, id, "registration: " + registration.reason);
+    if (!primary.converged) {
+      appendRefusal(outcome.refused, id, "registration: " + primary.reason);
       continue;
     }
     ++outcome.registrations;
-    const ConsistencyResult consistency = checkConsistency(
+    // The best fit, then (check_pose_alternatives) its alternatives: the best score stands.
+    RegistrationResult registration = primary;
+    ConsistencyResult consistency = checkConsistency(
         *model, observation, registration.T_target_source, session_map, config_.consistency);
+    double fitness = scoreFitness(registration);
+    if (config_.check_pose_alternatives) {
+      for (const PoseAlternative& alternative : primary.alternatives) {
+        RegistrationResult candidate = primary;
+        candidate.T_target_source = alternative.T_target_source;
+        candidate.fitness = alternative.fitness;
+        candidate.target_coverage = alternative.target_coverage;
+        candidate.horizontal_constraint = alternative.horizontal_constraint;
+        const ConsistencyResult check = checkConsistency(
+            *model, observation, candidate.T_target_source, session_map, config_.consistency);
+        if (!check.accepted) continue;
+        const double candidate_fitness = scoreFitness(candidate);
+        if (!consistency.accepted ||
+            candidate_fitness * check.agreement > fitness * consistency.agreement) {
+          registration = candidate;
+          consistency = check;
+          fitness = candidate_fitness;
+        }
+      }
+    }
     if (!consistency.accepted) {
       appendRefusal(outcome.refused, id, consistency.reason);
       continue;
     }
-    const double fitness = config_.score_both_ways
-                               ? std::max(registration.fitness, registration.target_coverage)
-                               : registration.fitness;
     const double score = fitness * consistency.agreement;
     if (score < config_.min_match_score) {
       appendRefusal(outcome.refused, id,

@@ -90,6 +90,12 @@ struct DatabaseConfig {
   /// joined into it (TSDF averaged, instances moved; its id is retired). false: they stay apart
   /// ("accepted but outscored" in the outcome).
   bool join_duplicates = true;
+  /// Each registration's other upright poses (RegistrationConfig::yaw_alternatives: a quarter
+  /// or half turn of a near-square footprint, another RANSAC hypothesis) go through the
+  /// consistency check too, and the pose with the best score (fitness x agreement) stands for
+  /// the match: the point fit alone cannot tell a 0.5 x 0.4 m crate from itself turned a
+  /// quarter when the view shows two faces, the model's volume can. false: the best fit only.
+  bool check_pose_alternatives = true;
   void validate() const;  // InputError naming the bad field
 };
 

@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "strata/core/error.h"
+#include "strata/core/math_constants.h"
 #include "strata/objects/internal/registration_ransac.h"
 #include "strata/objects/internal/surface_features_impl.h"
 
@@ -224,10 +225,70 @@ struct Refined {
   Eigen::Matrix4f T;
   Fit fit;
 };
+double targetCoverage(const Cloud& source, const Cloud& target, const Eigen::Matrix4f& T,
+                      const RegistrationConfig& config);
+
+/// Yaw (radians, about +z) of T's rotation.
+float yawOf(const Eigen::Matrix4f& T) { return std::atan2(T(1, 0), T(0, 0)); }
+
+/// |a - b| wrapped into [0, pi].
+float yawDifference(float a, float b) {
+  const float d = std::fmod(std::abs(a - b), 2.0f * static_cast<float>(kPi));
+  return std::min(d, 2.0f * static_cast<float>(kPi) - d);
+}
+
+std::vector<Refined> refineAll(const Cloud::Ptr& source, const SurfaceFeatures::Impl& target,
+                               const std::vector<Hypothesis>& hypotheses,
+                               const RegistrationConfig& config, std::optional<float> fixed_z_m);
+
+/// The best pose turned by a quarter, a half and three quarters about the source's centre (in the
+/// target frame), refined like the hypotheses: the poses a near-square or symmetric footprint
+/// confuses, offered to the caller's own check when RANSAC's vote missed them.
+std::vector<Refined> turnedAlternatives(const Cloud::Ptr& source,
+                                        const SurfaceFeatures::Impl& target,
+                                        const Eigen::Matrix4f& best,
+                                        const RegistrationConfig& config,
+                                        std::optional<float> fixed_z_m) {
+  Eigen::Vector4f centre = Eigen::Vector4f::Zero();
+  for (const pcl::PointNormal& p : *source) centre += p.getVector4fMap();
+  centre /= static_cast<float>(std::max<std::size_t>(1, source->size()));
+  centre.w() = 1.0f;
+  const Eigen::Vector3f c = (best * centre).head<3>();
+  std::vector<Hypothesis> turned;
+  for (const int quarter : {1, 2, 3}) {
+    Eigen::Matrix4f turn = Eigen::Matrix4f::Identity();
+    turn.topLeftCorner<3, 3>() =
+        Eigen::AngleAxisf(quarter * 0.5f * static_cast<float>(kPi), Eigen::Vector3f::UnitZ())
+            .toRotationMatrix();
+    turn.topRightCorner<3, 1>() = c - turn.topLeftCorner<3, 3>() * c;
+    Hypothesis h;
+    h.T = turn * best;
+    turned.push_back(h);
+  }
+  return refineAll(source, target, turned, config, fixed_z_m);
+}
+
+std::vector<Refined> refineAll(const Cloud::Ptr& source, const SurfaceFeatures::Impl& target,
+                               const std::vector<Hypothesis>& hypotheses,
+                               const RegistrationConfig& config, std::optional<float> fixed_z_m) {
+  const pcl::search::KdTree<pcl::PointNormal>& target_tree = *target.point_tree;
+  const float inlier_m = config.inlier_distance_voxels * config.voxel_size_m;
+  std::vector<Refined> out;
+  for (const Hypothesis& h : hypotheses) {
+    Eigen::Matrix4f guess = h.T;
+    if (fixed_z_m) guess(2, 3) = *fixed_z_m;
+    const Eigen::Matrix4f T = refineIcp(source, target, guess, config, fixed_z_m);
+    if (tiltDeg(T) > config.max_tilt_deg) continue;
+    out.push_back({T, scoreFit(*source, target_tree, T, inlier_m)});
+  }
+  return out;
+}
+
 std::optional<Refined> refineBest(const Cloud::Ptr& source, const SurfaceFeatures::Impl& target,
                                   const std::vector<Hypothesis>& hypotheses,
                                   const RegistrationConfig& config,
-                                  std::optional<float> fixed_z_m) {
+                                  std::optional<float> fixed_z_m,
+                                  std::vector<Refined>* others = nullptr) {
   const pcl::search::KdTree<pcl::PointNormal>& target_tree = *target.point_tree;
   const float inlier_m = config.inlier_distance_voxels * config.voxel_size_m;
   std::vector<std::pair<double, Eigen::Matrix4f>> scored;
@@ -243,9 +304,41 @@ std::optional<Refined> refineBest(const Cloud::Ptr& source, const SurfaceFeature
     const Eigen::Matrix4f T = refineIcp(source, target, scored[i].second, config, fixed_z_m);
     if (tiltDeg(T) > config.max_tilt_deg) continue;
     const Fit fit = scoreFit(*source, target_tree, T, inlier_m);
+    if (others != nullptr) others->push_back({T, fit});
     if (!best || fit.fitness > best->fit.fitness) best = Refined{T, fit};
   }
   return best;
+}
+
+/// The refined poses other than the best that differ from it in yaw by more than 20 deg (and
+/// from each other), fitness at least alternative_min_fitness x the best's, best first, at most 5.
+std::vector<PoseAlternative> distinctAlternatives(std::vector<Refined> refined,
+                                                  const Refined& best, const Cloud& source,
+                                                  const Cloud& target,
+                                                  const RegistrationConfig& config) {
+  constexpr float kDistinctYaw = 20.0f * static_cast<float>(kPi) / 180.0f;
+  constexpr std::size_t kMaxAlternatives = 5;
+  std::stable_sort(refined.begin(), refined.end(),
+                   [](const Refined& a, const Refined& b) { return a.fit.fitness > b.fit.fitness; });
+  std::vector<float> taken = {yawOf(best.T)};
+  std::vector<PoseAlternative> out;
+  for (const Refined& r : refined) {
+    if (out.size() >= kMaxAlternatives) break;
+    if (r.fit.fitness < config.alternative_min_fitness * best.fit.fitness) break;
+    const float yaw = yawOf(r.T);
+    if (std::any_of(taken.begin(), taken.end(),
+                    [&](float t) { return yawDifference(t, yaw) < kDistinctYaw; })) {
+      continue;
+    }
+    taken.push_back(yaw);
+    PoseAlternative alternative;
+    alternative.T_target_source.matrix() = r.T.cast<double>();
+    alternative.fitness = r.fit.fitness;
+    alternative.horizontal_constraint = r.fit.horizontal_constraint;
+    alternative.target_coverage = targetCoverage(source, target, r.T, config);
+    out.push_back(alternative);
+  }
+  return out;
 }
 
 /// scoreFit the other way round: the target's points against the source moved by `T`.
@@ -280,6 +373,8 @@ void RegistrationConfig::validate() const {
   require(max_tilt_deg > 0.0f && max_tilt_deg <= 180.0f, "max_tilt_deg", "must be in (0, 180]");
   require(feature_neighbours >= 1 && feature_neighbours <= 8, "feature_neighbours",
           "must be in 1..8");
+  require(alternative_min_fitness > 0.0f && alternative_min_fitness <= 1.0f,
+          "alternative_min_fitness", "must be in (0, 1]");
 }
 
 RegistrationResult registerSurfaces(const SurfaceCloud& source, const SurfaceCloud& target,
@@ -339,8 +434,9 @@ RegistrationResult registerSurfaces(const SurfaceFeatures& source_features,
       return finish("no RANSAC hypothesis " + kind + " from " + std::to_string(matches.size()) +
                     " feature correspondences");
     }
-    const std::optional<Refined> best =
-        refineBest(source.cloud, target, hypotheses, config, fixed_z_m);
+    std::vector<Refined> others;
+    const std::optional<Refined> best = refineBest(source.cloud, target, hypotheses, config,
+                                                   fixed_z_m, config.yaw_alternatives ? &others : nullptr);
     if (!best) {
       return finish("ICP tilted every hypothesis by more than " + degrees(config.max_tilt_deg));
     }
@@ -352,6 +448,13 @@ RegistrationResult registerSurfaces(const SurfaceFeatures& source_features,
     result.horizontal_constraint = best_fit.horizontal_constraint;
     result.target_coverage = targetCoverage(*source.cloud, *target.cloud, best_T, config);
     if (best_fit.fitness <= 0.0) return finish("no source point near the target after ICP");
+    if (config.yaw_alternatives) {
+      for (Refined& r : turnedAlternatives(source.cloud, target, best_T, config, fixed_z_m)) {
+        others.push_back(r);
+      }
+      result.alternatives =
+          distinctAlternatives(std::move(others), *best, *source.cloud, *target.cloud, config);
+    }
     return finish("");
   } catch (const pcl::PCLException& e) {
     return finish(std::string("PCL failed: ") + e.what());

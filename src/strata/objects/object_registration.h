@@ -14,6 +14,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "strata/objects/object_observation.h"
 
@@ -42,7 +43,23 @@ struct RegistrationConfig {
   /// views the right target point is often only second or third nearest (1..8).
   int feature_neighbours = 3;
   std::uint32_t seed = 1;  // RANSAC is deterministic for a given seed
+  /// Other upright poses kept beside the best (RegistrationResult::alternatives): the other
+  /// refined RANSAC hypotheses and the best pose turned a quarter, a half and three quarters
+  /// about the source's centre, each refined by ICP, when their fitness reaches
+  /// alternative_min_fitness of the best's. A near-square footprint or a symmetric part fits
+  /// several yaws almost equally; the caller scores them with more than the point fit (the
+  /// object database with its volumetric check). false: none (the best pose alone).
+  bool yaw_alternatives = true;
+  float alternative_min_fitness = 0.7f;  // (0, 1]
   void validate() const;   // InputError naming the bad field
+};
+
+/// An upright pose other than the best, with the same figures as RegistrationResult's.
+struct PoseAlternative {
+  Eigen::Isometry3d T_target_source = Eigen::Isometry3d::Identity();
+  double fitness = 0.0;
+  double target_coverage = 0.0;
+  double horizontal_constraint = 0.0;
 };
 
 struct RegistrationResult {
@@ -60,6 +77,10 @@ struct RegistrationResult {
   /// source may slide without changing the fit). Point-to-plane ICP's translation terms are these
   /// normals; yaw aside, the horizontal is what a partial view of an upright object leaves open.
   double horizontal_constraint = 0.0;
+  /// With RegistrationConfig::yaw_alternatives: other upright poses whose yaw differs from the
+  /// best's by more than 20 deg, fitness at least alternative_min_fitness x the best's, best
+  /// first (at most 5).
+  std::vector<PoseAlternative> alternatives;
   int correspondences = 0;  // feature correspondences RANSAC started from
   double ms = 0.0;
 };

@@ -111,6 +111,15 @@ bool sameShape(const sim::ShapeSpec& a, const sim::ShapeSpec& b) {
       return a.levels == b.levels;
     case sim::ShapeKind::kMesh:
       return a.mesh_path == b.mesh_path && a.scale == b.scale && a.y_up == b.y_up;
+    case sim::ShapeKind::kVase:
+    case sim::ShapeKind::kBlob:
+    case sim::ShapeKind::kTube:
+      return a.seed == b.seed;
+    case sim::ShapeKind::kLShape:
+    case sim::ShapeKind::kUShape:
+      return std::abs(a.thickness_m - b.thickness_m) < kTolerance_m;
+    case sim::ShapeKind::kStool:
+      return a.legs == b.legs;
     default:
       return true;
   }

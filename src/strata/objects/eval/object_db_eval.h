@@ -65,12 +65,14 @@ std::vector<change::SessionObjectEvaluation> segmentIdentities(
     const sim::World& world, const std::vector<std::vector<change::DiscoveredObject>>& segments,
     const std::vector<int>& world_sessions = {}, const change::EvaluationConfig& config = {});
 
-/// Same shape: same kind and the same size, radius, sides, levels or mesh file (colour aside).
+/// Same shape: same kind and the same size, radius, sides, levels, mesh file, seed (vase, blob,
+/// tube), thickness (l_shape, u_shape) or legs (stool); colour aside.
 bool sameShape(const sim::ShapeSpec& a, const sim::ShapeSpec& b);
 
 /// Rotations about the object's vertical axis that leave the shape as it is: 0 = any (cylinder),
 /// else n (the shape maps onto itself every 360/n degrees): box and table with a square footprint
-/// 4, other boxes and tables 2, chair, shelf and meshes 1 (their backs make them asymmetric).
+/// 4, other boxes and tables 2, chair, shelf and meshes 1 (their backs make them asymmetric);
+/// procedural shapes as sim::proceduralYawSymmetry (a round vase 0, a round stool its legs).
 int yawSymmetryOrder(const sim::ShapeSpec& shape);
 
 /// Rotation angle (degrees) of `R_error` (should be a symmetry of the shape, in its frame) to the

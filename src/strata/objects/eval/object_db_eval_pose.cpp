@@ -4,6 +4,7 @@
 
 #include "strata/objects/eval/internal/object_db_eval_models.h"
 #include "strata/core/math_constants.h"
+#include "strata/sim/world/procedural_shapes.h"
 
 namespace strata::eval {
 namespace {
@@ -103,6 +104,7 @@ PoseErrors poseErrors(const std::vector<objects::ObjectModel>& models,
 }  // namespace detail
 
 int yawSymmetryOrder(const sim::ShapeSpec& shape) {
+  if (sim::isProcedural(shape.kind)) return sim::proceduralYawSymmetry(shape);
   const bool square = std::abs(shape.size_m.x() - shape.size_m.y()) < 1e-6;
   switch (shape.kind) {
     case sim::ShapeKind::kCylinder:

@@ -1,5 +1,6 @@
 #include "strata/sim/world/internal/object_parser.h"
 
+#include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <iostream>
@@ -26,6 +27,12 @@ const std::map<std::string, TypeInfo>& typeTable() {
       {"table", {ShapeKind::kTable, {"size"}, {1.2, 0.8, 0.75}}},
       {"shelf", {ShapeKind::kShelf, {"size", "levels"}, {1.0, 0.4, 1.8}}},
       {"mesh", {ShapeKind::kMesh, {"file", "scale", "up", "optional"}, Eigen::Vector3d::Zero()}},
+      {"vase", {ShapeKind::kVase, {"size", "seed"}, {0.35, 0.35, 0.6}}},
+      {"blob", {ShapeKind::kBlob, {"size", "seed"}, {0.5, 0.4, 0.45}}},
+      {"tube", {ShapeKind::kTube, {"size", "seed"}, {0.6, 0.6, 0.5}}},
+      {"l_shape", {ShapeKind::kLShape, {"size", "thickness"}, {0.8, 0.6, 0.7}}},
+      {"u_shape", {ShapeKind::kUShape, {"size", "thickness"}, {0.9, 0.6, 0.6}}},
+      {"stool", {ShapeKind::kStool, {"size", "legs"}, {0.4, 0.4, 0.65}}},
   };
   return table;
 }
@@ -35,7 +42,7 @@ const TypeInfo& lookupType(const YamlField& field, bool is_static) {
   const auto it = typeTable().find(type);
   if (it == typeTable().end() || (type == "pillar" && !is_static)) {
     field.fail("unknown type '" + type + "' (expected one of box, cylinder, chair, table, shelf, " +
-               "mesh" + (is_static ? ", pillar)" : ")"));
+               "mesh, vase, blob, tube, l_shape, u_shape, stool" + (is_static ? ", pillar)" : ")"));
   }
   return it->second;
 }
@@ -86,6 +93,18 @@ void parseShapeKeys(const YamlField& field, const std::string& type, const TypeI
     shape.size_m = field.has("size") ? parseSize(field.get("size")) : info.default_size_m;
   }
   if (field.has("levels")) shape.levels = static_cast<int>(field.get("levels").integer(2, 20));
+  if (field.has("seed")) shape.seed = field.get("seed").unsignedInteger();
+  if (field.has("legs")) shape.legs = static_cast<int>(field.get("legs").integer(3, 8));
+  if (field.has("thickness")) {
+    const YamlField thickness = field.get("thickness");
+    shape.thickness_m = thickness.positive();
+    const double limit = info.kind == ShapeKind::kUShape
+                             ? std::min(shape.size_m.x() / 2, shape.size_m.y())
+                             : std::min(shape.size_m.x(), shape.size_m.y());
+    if (shape.thickness_m >= limit) {
+      thickness.fail("must be below " + std::to_string(limit) + " m for this footprint");
+    }
+  }
 }
 
 bool validName(const std::string& name) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include "strata/core/math_constants.h"
+#include "strata/sim/world/procedural_shapes.h"
 
 namespace strata::sim {
 namespace {
@@ -114,6 +115,13 @@ std::vector<Mesh> shapeParts(const ShapeSpec& shape, const Mesh* loaded) {
       return shelfParts(s, shape.levels);
     case ShapeKind::kMesh:
       return loaded != nullptr ? std::vector<Mesh>{*loaded} : std::vector<Mesh>{};
+    case ShapeKind::kVase:
+    case ShapeKind::kBlob:
+    case ShapeKind::kTube:
+    case ShapeKind::kLShape:
+    case ShapeKind::kUShape:
+    case ShapeKind::kStool:
+      return proceduralParts(shape);
   }
   return {};
 }

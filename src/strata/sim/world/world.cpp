@@ -6,6 +6,8 @@
 #include <sstream>
 
 #include "strata/core/error.h"
+#include "strata/sim/rng.h"
+#include "strata/sim/world/procedural_shapes.h"
 #include "strata/sim/world/internal/layout.h"
 #include "strata/sim/world/internal/scene_assets.h"
 #include "strata/sim/world/shape_mesh.h"
@@ -35,6 +37,18 @@ const char* shapeKindName(ShapeKind kind) {
       return "shelf";
     case ShapeKind::kMesh:
       return "mesh";
+    case ShapeKind::kVase:
+      return "vase";
+    case ShapeKind::kBlob:
+      return "blob";
+    case ShapeKind::kTube:
+      return "tube";
+    case ShapeKind::kLShape:
+      return "l_shape";
+    case ShapeKind::kUShape:
+      return "u_shape";
+    case ShapeKind::kStool:
+      return "stool";
   }
   return "box";
 }
@@ -43,6 +57,9 @@ namespace {
 
 /// Builds an object's shape; a bad mesh file is reported at the object's line in the world file.
 ShapeGeometry objectShape(const WorldSpec& spec, ObjectSpec& object) {
+  if (isProceduralSeeded(object.shape.kind)) {
+    object.shape.seed = hashCombine(spec.seed, object.shape.seed);
+  }
   try {
     return buildShapeGeometry(object.shape);
   } catch (const InputError& e) {

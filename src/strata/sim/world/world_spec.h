@@ -13,7 +13,10 @@
 
 namespace strata::sim {
 
-enum class ShapeKind { kBox, kCylinder, kChair, kTable, kShelf, kMesh };
+/// kBox .. kMesh: primitives and mesh files. kVase .. kStool: procedural shapes
+/// (procedural_shapes.h), generated deterministically from the shape's seed and the world's.
+enum class ShapeKind { kBox, kCylinder, kChair, kTable, kShelf, kMesh, kVase, kBlob, kTube, kLShape,
+                       kUShape, kStool };
 
 /// Name used in files and ground truth ("box", "cylinder", ...).
 const char* shapeKindName(ShapeKind kind);
@@ -30,6 +33,11 @@ struct ShapeSpec {
   std::string mesh_path;   // mesh: as resolved (world file's folder, or data: prefix)
   double scale = 1.0;      // mesh: uniform factor applied to the file's coordinates
   bool y_up = false;       // mesh: the file's up axis is +y (most OBJ/PLY exports), not +z
+  /// vase, blob, tube: the file's `seed`; World mixes the world's seed into it before the shape is
+  /// built (so another world seed gives other shapes), and the mixed value is what stays here.
+  std::uint64_t seed = 1;
+  double thickness_m = 0.0;  // l_shape, u_shape: arm thickness (0: a third of the smaller side)
+  int legs = 3;              // stool: number of legs, 3 to 8
 };
 
 /// A thing with a shape, a material and a place on the floor.
