@@ -50,7 +50,8 @@ void validateSession(const AlignSession& s, std::size_t index) {
 }
 
 LoadedKeyframe loadOne(const AlignSession& s, std::size_t session, std::size_t k,
-                       const FeatureConfig& config) {
+                       const AlignConfig& align_config) {
+  const FeatureConfig& config = align_config.features;
   LoadedKeyframe out;
   out.session = session;
   out.keyframe = k;
@@ -67,6 +68,8 @@ LoadedKeyframe loadOne(const AlignSession& s, std::size_t session, std::size_t k
     }
     out.features = extractFeatures(frame.color, out.depth, out.intrinsics, config);
   }
+  if (align_config.surface_candidates_per_keyframe > 0)
+    out.surface = describeSurface(out.depth, out.intrinsics, align_config.surface);
   return out;
 }
 
@@ -87,7 +90,7 @@ std::vector<LoadedKeyframe> loadKeyframes(const std::vector<AlignSession>& sessi
   std::atomic<std::size_t> done{0};
   std::mutex report_mutex;
   parallelForEach(jobs.size(), std::max(1, config.threads), [&](std::size_t j) {
-    loaded[j] = loadOne(sessions[jobs[j].first], jobs[j].first, jobs[j].second, config.features);
+    loaded[j] = loadOne(sessions[jobs[j].first], jobs[j].first, jobs[j].second, config);
     const std::size_t finished = ++done;
     if (progress) {
       std::lock_guard<std::mutex> lock(report_mutex);

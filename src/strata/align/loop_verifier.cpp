@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <Eigen/Eigenvalues>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core/eigen.hpp>
 #include <sstream>
@@ -9,6 +10,7 @@
 
 #include "strata/align/internal/dense_icp.h"
 #include "strata/align/internal/descriptor_matching.h"
+#include "strata/align/internal/surface_registration.h"
 #include "strata/core/error.h"
 
 namespace strata::align {
@@ -122,11 +124,22 @@ double pnpResidual(const Correspondences& c, const std::vector<int>& inliers,
   return n > 0 ? std::sqrt(sum / n) : 0.0;
 }
 
+// Smallest eigenvalue of the mean n n^T over the ICP's correspondences: the translational block
+// of the unweighted J^T J is the sum of n n^T (J's translation part is R^T n, a unit vector).
+double translationConstraint(const store::Matrix6d& JtJ, int count) {
+  if (count <= 0) return 0.0;
+  const Eigen::Matrix3d N = JtJ.topLeftCorner<3, 3>() / count;
+  return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(N, Eigen::EigenvaluesOnly).eigenvalues()(0);
+}
+
 // The ICP step and its gates; fills the measurement's pose, residual, overlap and information.
+// `first_gate_m`: the ICP's first association gate; `max_correction_m`: how far ICP may move the
+// initial pose; `min_constraint` > 0 refuses ICP that leaves a translation unconstrained.
 void refineWithIcp(const VerifyKeyframe& a, const VerifyKeyframe& b, const VerifyConfig& config,
+                   double first_gate_m, double max_correction_m, double min_constraint,
                    LoopMeasurement& m) {
-  const detail::DenseIcpConfig icp{config.icp_iterations, config.icp_stride_px,
-                                   config.icp_max_distance_m, config.icp_max_normal_angle_rad};
+  const detail::DenseIcpConfig icp{config.icp_iterations, config.icp_stride_px, first_gate_m,
+                                   config.icp_max_normal_angle_rad};
   const detail::DenseIcpResult r =
       detail::denseIcp(*a.depth, a.intrinsics, *b.depth, b.intrinsics, m.T_a_b, icp);
   if (!r.converged) {
@@ -142,9 +155,12 @@ void refineWithIcp(const VerifyKeyframe& a, const VerifyKeyframe& b, const Verif
   m.residual_m = r.rms_m;
   m.overlap = r.valid_b > 0 ? static_cast<double>(r.inliers) / r.valid_b : 0.0;
   m.information = r.JtJ / std::max(r.rms_m * r.rms_m, kMinResidualSquared);
-  if (correction_m > config.max_icp_correction_m) {
-    m.reason =
-        describe("ICP moved the PnP pose by", correction_m, "m, over", config.max_icp_correction_m);
+  const double constraint = translationConstraint(r.JtJ, r.inliers);
+  if (correction_m > max_correction_m) {
+    m.reason = describe("ICP moved the initial pose by", correction_m, "m, over", max_correction_m);
+  } else if (min_constraint > 0.0 && constraint < min_constraint) {
+    m.reason = describe("ICP's surfaces constrain a translation by", constraint, "below",
+                        min_constraint);
   } else if (m.residual_m > config.max_icp_rms_m) {
     m.reason = describe("ICP residual", m.residual_m, "m, over", config.max_icp_rms_m);
   } else if (m.overlap < config.min_icp_overlap) {
@@ -183,14 +199,22 @@ void VerifyConfig::validate() const {
   if (!(max_icp_correction_m > 0.0)) {
     throw InputError("VerifyConfig: max_icp_correction_m must be > 0");
   }
+  if (surface_ransac_iterations < 1)
+    throw InputError("VerifyConfig: surface_ransac_iterations must be >= 1");
+  if (!(surface_inlier_m > 0.0)) throw InputError("VerifyConfig: surface_inlier_m must be > 0");
+  if (min_surface_inliers < 3) throw InputError("VerifyConfig: min_surface_inliers must be >= 3");
+  if (!(surface_icp_max_distance_m > 0.0))
+    throw InputError("VerifyConfig: surface_icp_max_distance_m must be > 0");
+  if (!(surface_max_icp_correction_m > 0.0))
+    throw InputError("VerifyConfig: surface_max_icp_correction_m must be > 0");
+  if (!(min_surface_constraint >= 0.0 && min_surface_constraint <= 1.0 / 3.0))
+    throw InputError("VerifyConfig: min_surface_constraint must be in [0, 1/3]");
 }
 
-LoopMeasurement verifyLoop(const VerifyKeyframe& a, const VerifyKeyframe& b,
-                           const VerifyConfig& config) {
-  config.validate();
-  checkKeyframe(a, "a");
-  checkKeyframe(b, "b");
+namespace {
 
+LoopMeasurement verifyByAppearance(const VerifyKeyframe& a, const VerifyKeyframe& b,
+                                   const VerifyConfig& config) {
   LoopMeasurement m;
   const Correspondences c = correspondences(*a.features, *b.features, config);
   m.matches = static_cast<int>(c.points_b.size());
@@ -212,9 +236,44 @@ LoopMeasurement verifyLoop(const VerifyKeyframe& a, const VerifyKeyframe& b,
   } else if (m.inlier_ratio < config.min_inlier_ratio) {
     m.reason = describe("PnP inlier ratio", m.inlier_ratio, "below", config.min_inlier_ratio);
   } else {
-    refineWithIcp(a, b, config, m);
+    refineWithIcp(a, b, config, config.icp_max_distance_m, config.max_icp_correction_m, 0.0, m);
   }
   return m;
+}
+
+LoopMeasurement verifyBySurface(const VerifyKeyframe& a, const VerifyKeyframe& b,
+                                const VerifyConfig& config) {
+  LoopMeasurement m;
+  m.from_surface = true;
+  const detail::SurfaceRegistration r = detail::registerSurfaces(
+      *a.surface, *b.surface,
+      {config.surface_ransac_iterations, config.surface_inlier_m, 0.9, 0.15});
+  m.matches = r.correspondences;
+  m.inliers = r.inliers;
+  m.inlier_ratio = r.correspondences > 0 ? static_cast<double>(r.inliers) / r.correspondences : 0.0;
+  if (!r.found || r.inliers < config.min_surface_inliers) {
+    m.reason = describe("too few FPFH RANSAC inliers:", r.inliers, "below",
+                        config.min_surface_inliers);
+    return m;
+  }
+  m.T_a_b = r.T_a_b;
+  refineWithIcp(a, b, config, config.surface_icp_max_distance_m,
+                config.surface_max_icp_correction_m, config.min_surface_constraint, m);
+  return m;
+}
+
+}  // namespace
+
+LoopMeasurement verifyLoop(const VerifyKeyframe& a, const VerifyKeyframe& b,
+                           const VerifyConfig& config) {
+  config.validate();
+  checkKeyframe(a, "a");
+  checkKeyframe(b, "b");
+  LoopMeasurement m = verifyByAppearance(a, b, config);
+  if (m.accepted || a.surface == nullptr || b.surface == nullptr) return m;
+  LoopMeasurement s = verifyBySurface(a, b, config);
+  if (!s.accepted) s.reason = "appearance: " + m.reason + "; surface: " + s.reason;
+  return s;
 }
 
 }  // namespace strata::align

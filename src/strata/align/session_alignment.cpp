@@ -6,7 +6,9 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <mutex>
+#include <utility>
 
 #include "strata/align/internal/alignment_steps.h"
 #include "strata/core/clock.h"
@@ -22,8 +24,29 @@ constexpr double kMaxLoopInformation = 1.0 / (0.005 * 0.005);
 
 struct Candidate {
   std::size_t a = 0, b = 0;  // indices into the loaded keyframes; a was indexed before b
-  double score = 0.0;
+  double score = 0.0;        // appearance: the place index's; surface: minus the distance
 };
+
+// The `count` admissible keyframes before q nearest by surface descriptor that are not already
+// candidates of q (candidates[taken_from...]).
+void addSurfaceCandidates(const std::vector<detail::LoadedKeyframe>& keyframes, std::size_t q,
+                          std::size_t count, const std::function<bool(std::size_t)>& admissible,
+                          std::vector<Candidate>& candidates, std::size_t taken_from) {
+  std::vector<std::pair<double, std::size_t>> nearest;
+  for (std::size_t k = 0; k < q; ++k) {
+    if (!admissible(k)) continue;
+    bool taken = false;
+    for (std::size_t c = taken_from; c < candidates.size(); ++c) taken |= candidates[c].a == k;
+    if (taken) continue;
+    const double d = surfaceDistance(keyframes[q].surface, keyframes[k].surface);
+    if (std::isfinite(d)) nearest.emplace_back(d, k);
+  }
+  const std::size_t n = std::min(count, nearest.size());
+  std::partial_sort(nearest.begin(), nearest.begin() + static_cast<std::ptrdiff_t>(n),
+                    nearest.end());
+  for (std::size_t i = 0; i < n; ++i)
+    candidates.push_back({nearest[i].second, q, -nearest[i].first});
+}
 
 /// Queries each keyframe against those indexed before it (so every pair is considered once),
 /// then indexes it.
@@ -39,11 +62,16 @@ std::vector<Candidate> findCandidates(const std::vector<detail::LoadedKeyframe>&
       return config.intra_session_loops &&
              std::abs(query.timestamp_s - other.timestamp_s) >= config.min_intra_session_gap_s;
     };
+    const std::size_t first = candidates.size();
     if (index.keyframes() > 0 && query.features.size() > 0) {
       for (const PlaceCandidate& c : index.query(query.features, config.candidates_per_keyframe,
                                                  config.min_votes, admissible)) {
         candidates.push_back({c.keyframe, q, c.score});
       }
+    }
+    if (config.surface_candidates_per_keyframe > 0) {
+      addSurfaceCandidates(keyframes, q, config.surface_candidates_per_keyframe, admissible,
+                           candidates, first);
     }
     if (query.features.size() > 0) index.add(q, query.features);
     if (progress) progress("place recognition", q + 1, keyframes.size());
@@ -60,8 +88,10 @@ std::vector<LoopMeasurement> verifyAll(const std::vector<detail::LoadedKeyframe>
   parallelForEach(candidates.size(), std::max(1, config.threads), [&](std::size_t j) {
     const detail::LoadedKeyframe& a = keyframes[candidates[j].a];
     const detail::LoadedKeyframe& b = keyframes[candidates[j].b];
-    out[j] = verifyLoop({&a.features, &a.depth, a.intrinsics},
-                        {&b.features, &b.depth, b.intrinsics}, config.verify);
+    const bool surfaces = config.surface_candidates_per_keyframe > 0;
+    out[j] = verifyLoop({&a.features, &a.depth, a.intrinsics, surfaces ? &a.surface : nullptr},
+                        {&b.features, &b.depth, b.intrinsics, surfaces ? &b.surface : nullptr},
+                        config.verify);
     const std::size_t finished = ++done;
     if (progress) {
       std::lock_guard<std::mutex> lock(progress_mutex);
@@ -108,6 +138,7 @@ void fillSessions(const std::vector<AlignSession>& sessions,
 
 void AlignConfig::validate() const {
   features.validate();
+  surface.validate();
   index.validate();
   verify.validate();
   graph.validate();

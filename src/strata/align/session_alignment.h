@@ -1,10 +1,11 @@
 #pragma once
 // Multi-session alignment: sessions recorded in their own odometry frames, drifting, registered
-// into one world frame. Per keyframe ORB features with 3D from depth (keyframe_features.h);
-// candidates from the place index (place_index.h) across sessions and, far enough apart in time,
-// within one; each candidate verified geometrically (loop_verifier.h); then the multi-session
-// pose graph (pose_graph.h) places the sessions and relaxes them. Every frame's pose follows from
-// its keyframes' corrections. Method and figures: docs/align.md.
+// into one world frame. Per keyframe ORB features with 3D from depth (keyframe_features.h) and a
+// description of the surface its depth sees (surface_descriptor.h); candidates by appearance from
+// the place index (place_index.h) and by surface descriptor, across sessions and, far enough
+// apart in time, within one; each candidate verified geometrically (loop_verifier.h); then the
+// multi-session pose graph (pose_graph.h) places the sessions and relaxes them. Every frame's
+// pose follows from its keyframes' corrections. Method and figures: docs/align.md.
 //
 // Frames: S_k is session k's odometry frame (its frames' poses are T_S_C); W is the world frame,
 // defined by the first session (T_W_S0 = identity, the anchor). T_W_C = T_W_S * T_S_C before
@@ -22,6 +23,7 @@
 #include "strata/align/loop_verifier.h"
 #include "strata/align/place_index.h"
 #include "strata/align/pose_graph.h"
+#include "strata/align/surface_descriptor.h"
 #include "strata/core/dataset.h"
 
 namespace strata::align {
@@ -52,7 +54,12 @@ struct AlignConfig {
   PlaceIndexConfig index;
   VerifyConfig verify;
   PoseGraphConfig graph;
+  SurfaceConfig surface;
   std::size_t candidates_per_keyframe = 4;  // best-scored candidates verified per keyframe
+  /// Also verified per keyframe: the admissible keyframes nearest by surface descriptor
+  /// (surface_descriptor.h) that appearance did not propose; 0 leaves the surface out (no
+  /// descriptors computed, the verifier's surface path off).
+  std::size_t surface_candidates_per_keyframe = 3;
   int min_votes = 12;                       // candidates need this many descriptor votes
   /// Loops within a session join keyframes at least this far apart in time (closer ones are the
   /// odometry's business).

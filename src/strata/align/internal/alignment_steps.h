@@ -15,6 +15,7 @@ struct LoadedKeyframe {
   DepthImage depth;
   CameraIntrinsics intrinsics;
   KeyframeFeatures features;
+  KeyframeSurface surface;  // empty when the surface path is off
 };
 
 /// InputError naming the first session that breaks alignSessions' contract.
