@@ -123,17 +123,16 @@ TEST(HistoryGraph, ShortestPathAndRerouting) {
   EXPECT_TRUE(HistoryGraph::pathTo(parents, a, lonely).empty());
 }
 
-/// A straight corridor along x (|x| <= 8, |y| <= 1, z in [0.2, 1.8]), everything known.
-class CorridorChecker final : public plan::CollisionChecker {
+/// Everything known, the clearance at a point given by a closed form (a box-shaped free space);
+/// the ESDF's gradient is zero (no push: the tests are about the planners' choices).
+class KnownSpaceChecker final : public plan::CollisionChecker {
  public:
-  static float clearance(const Eigen::Vector3f& p) {
-    return std::min(
-        {8.0f - std::abs(p.x()), 1.0f - std::abs(p.y()), 0.8f - std::abs(p.z() - 1.0f)});
-  }
+  using Clearance = float (*)(const Eigen::Vector3f&);
+  explicit KnownSpaceChecker(Clearance clearance) : clearance_(clearance) {}
   std::vector<std::uint8_t> spheresFree(const std::vector<Eigen::Vector3f>& centres, float radius_m,
                                         UnknownPolicy) override {
     std::vector<std::uint8_t> out;
-    for (const auto& c : centres) out.push_back(clearance(c) > radius_m ? 1 : 0);
+    for (const auto& c : centres) out.push_back(clearance_(c) > radius_m ? 1 : 0);
     spheres_tested_ += centres.size();
     return out;
   }
@@ -142,15 +141,23 @@ class CorridorChecker final : public plan::CollisionChecker {
     for (const auto& p : points) {
       EsdfSample s;
       s.status = EsdfStatus::kKnown;
-      s.distance_m = clearance(p);
-      s.gradient = Eigen::Vector3f::Zero();  // no push: the test is about the planner's memory
+      s.distance_m = clearance_(p);
+      s.gradient = Eigen::Vector3f::Zero();
       out.push_back(s);
     }
     return out;
   }
   float voxelSize() const override { return 0.1f; }
   float maxDistance() const override { return 2.0f; }
+
+ private:
+  Clearance clearance_;
 };
+
+/// A straight corridor along x (|x| <= 8, |y| <= 1, z in [0.2, 1.8]).
+float corridorClearance(const Eigen::Vector3f& p) {
+  return std::min({8.0f - std::abs(p.x()), 1.0f - std::abs(p.y()), 0.8f - std::abs(p.z() - 1.0f)});
+}
 
 /// Two pockets of unknown space at x = -6 and x = +6: a view within 2 m of a pocket gains 5 m^3
 /// until the robot has been within 0.7 m of it.
@@ -200,7 +207,7 @@ struct CorridorRun {
 /// The history planner from the corridor's middle: its local box (7 m) sees both pockets from
 /// there, but from one pocket not the other, so only the cache knows the second one then.
 CorridorRun runCorridor(const HistoryConfig& config) {
-  CorridorChecker checker;
+  KnownSpaceChecker checker(corridorClearance);
   Pockets pockets;
   HistoryPlanner planner(config);
   ExplorationState state = corridorState(checker, pockets);
@@ -264,7 +271,7 @@ class PinnableChecker final : public plan::CollisionChecker {
   float maxDistance() const override { return 2.0f; }
 
  private:
-  CorridorChecker corridor_;
+  KnownSpaceChecker corridor_{corridorClearance};
 };
 
 TEST(HistoryPlanner, WithNoFreeEdgeItHoversOnceThenRetracesItsRoute) {
@@ -309,7 +316,7 @@ TEST(HistoryPlanner, AGlobalStepFindsViewsBeyondTheTreeBeforeItStops) {
   // A pocket at x = 4 that the tree (box +-1 m in x) never reaches and nothing cached knows:
   // only the global step's samples over the whole bounds find it.
   auto run = [](int global_samples) {
-    CorridorChecker checker;
+    KnownSpaceChecker checker(corridorClearance);
     Pockets pockets;
     pockets.centres = {{4.0f, 0.0f, 1.0f}};
     pockets.consumed = {false};
@@ -344,32 +351,10 @@ TEST(HistoryPlanner, AGlobalStepFindsViewsBeyondTheTreeBeforeItStops) {
   EXPECT_TRUE(without.finished);
 }
 
-/// A tall hall, |x|, |y| <= 4 m, z in [0, 5] m, all known free.
-class HallChecker final : public plan::CollisionChecker {
- public:
-  static float clearance(const Eigen::Vector3f& p) {
-    return std::min({4.0f - std::abs(p.x()), 4.0f - std::abs(p.y()), p.z(), 5.0f - p.z()});
-  }
-  std::vector<std::uint8_t> spheresFree(const std::vector<Eigen::Vector3f>& centres, float radius_m,
-                                        UnknownPolicy) override {
-    std::vector<std::uint8_t> out;
-    for (const auto& c : centres) out.push_back(clearance(c) > radius_m ? 1 : 0);
-    return out;
-  }
-  std::vector<EsdfSample> sample(const std::vector<Eigen::Vector3f>& points) override {
-    std::vector<EsdfSample> out;
-    for (const auto& p : points) {
-      EsdfSample s;
-      s.status = EsdfStatus::kKnown;
-      s.distance_m = clearance(p);
-      s.gradient = Eigen::Vector3f::Zero();
-      out.push_back(s);
-    }
-    return out;
-  }
-  float voxelSize() const override { return 0.1f; }
-  float maxDistance() const override { return 2.0f; }
-};
+/// A tall hall, |x|, |y| <= 4 m, z in [0, 5] m.
+float hallClearance(const Eigen::Vector3f& p) {
+  return std::min({4.0f - std::abs(p.x()), 4.0f - std::abs(p.y()), p.z(), 5.0f - p.z()});
+}
 
 TEST(HistoryPlanner, ClimbsToTheUnseenTopOfATallHall) {
   // Only views above 3 m gain (the racks' tops); the robot starts at 1.2 m.
@@ -386,7 +371,7 @@ TEST(HistoryPlanner, ClimbsToTheUnseenTopOfATallHall) {
     return out;
   };
   auto highest = [&](float full_height_share) {
-    HallChecker checker;
+    KnownSpaceChecker checker(hallClearance);
     HistoryConfig config;
     config.tree.full_height_share = full_height_share;
     config.global_samples = 0;  // the tree alone
@@ -416,7 +401,7 @@ TEST(HistoryPlanner, ClimbsToTheUnseenTopOfATallHall) {
 }
 
 TEST(NbvpPlanner, FliesTheFirstEdgeTowardsGainAndStopsWithoutGain) {
-  CorridorChecker checker;
+  KnownSpaceChecker checker(corridorClearance);
   Pockets pockets;
   pockets.centres = {{3.0f, 0.0f, 1.0f}};
   pockets.consumed = {false};

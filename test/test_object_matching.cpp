@@ -12,6 +12,7 @@
 #include <tuple>
 
 #include "strata/objects/object_registration.h"
+#include "surface_cells.h"
 #include "strata/sim/world/procedural_shapes.h"
 #include "strata/sim/world/shape_mesh.h"
 
@@ -31,13 +32,13 @@ sim::ShapeSpec shape(sim::ShapeKind kind, const Eigen::Vector3d& size_m, std::ui
 
 /// World-frame samples (one per voxel cube, 2 mm noise) of the faces of the shape at T_W_P that
 /// look towards the views (azimuths in degrees, elevation 35 deg) and not down.
-std::map<std::tuple<int, int, int>, std::pair<Eigen::Vector3f, Eigen::Vector3f>> samples(
+test::SurfaceCells samples(
     const sim::ShapeSpec& spec, const Eigen::Isometry3d& T_W_P,
     const std::vector<double>& azimuths_deg, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
   std::normal_distribution<float> noise(0.0f, 0.002f);
-  std::map<std::tuple<int, int, int>, std::pair<Eigen::Vector3f, Eigen::Vector3f>> cells;
+  test::SurfaceCells cells;
   const Eigen::Isometry3f T = T_W_P.cast<float>();
   const double el = 35.0 * kPi / 180.0;
   for (const double azimuth_deg : azimuths_deg) {
@@ -75,17 +76,7 @@ std::pair<SurfaceCloud, Eigen::Isometry3d> view(const sim::ShapeSpec& spec,
                                                 const std::vector<double>& azimuths_deg,
                                                 unsigned seed) {
   const auto cells = samples(spec, T_W_P, azimuths_deg, seed);
-  Eigen::Vector3f centroid = Eigen::Vector3f::Zero();
-  for (const auto& [key, pn] : cells) centroid += pn.first;
-  centroid /= static_cast<float>(cells.size());
-  SurfaceCloud cloud;
-  for (const auto& [key, pn] : cells) {
-    cloud.points.push_back(pn.first - centroid);
-    cloud.normals.push_back(pn.second);
-  }
-  Eigen::Isometry3d T_W_O = Eigen::Isometry3d::Identity();
-  T_W_O.translation() = centroid.cast<double>();
-  return {cloud, T_W_O};
+  return test::cloudAboutCentroid(cells);
 }
 
 RegistrationConfig config() {

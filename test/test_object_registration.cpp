@@ -10,6 +10,7 @@
 
 #include "strata/core/error.h"
 #include "strata/objects/object_registration.h"
+#include "surface_cells.h"
 #include "strata/sim/world/shape_mesh.h"
 
 namespace strata::objects {
@@ -39,7 +40,7 @@ std::pair<SurfaceCloud, Eigen::Isometry3d> view(const sim::ShapeSpec& spec,
   std::mt19937 rng(seed);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
   std::normal_distribution<float> noise(0.0f, 0.002f);
-  std::map<std::tuple<int, int, int>, std::pair<Eigen::Vector3f, Eigen::Vector3f>> cells;
+  test::SurfaceCells cells;
   const Eigen::Isometry3f T = T_W_P.cast<float>();
   for (const Mesh& part : sim::shapeParts(spec)) {
     for (const Eigen::Vector3i& tri : part.triangles) {
@@ -59,17 +60,7 @@ std::pair<SurfaceCloud, Eigen::Isometry3d> view(const sim::ShapeSpec& spec,
       }
     }
   }
-  Eigen::Vector3f centroid = Eigen::Vector3f::Zero();
-  for (const auto& [key, pn] : cells) centroid += pn.first;
-  centroid /= static_cast<float>(cells.size());
-  SurfaceCloud cloud;
-  for (const auto& [key, pn] : cells) {
-    cloud.points.push_back(pn.first - centroid);
-    cloud.normals.push_back(pn.second);
-  }
-  Eigen::Isometry3d T_W_O = Eigen::Isometry3d::Identity();
-  T_W_O.translation() = centroid.cast<double>();
-  return {cloud, T_W_O};
+  return test::cloudAboutCentroid(cells);
 }
 
 struct Errors {

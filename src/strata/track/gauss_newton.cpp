@@ -54,13 +54,8 @@ GaussNewtonStep solveGaussNewton(const NormalEquations& sums, double min_eigenva
 }
 
 Matrix6d poseCovariance(const NormalEquations& sums, double rows) {
-  const Matrix6d H = fullJtJ(sums);
-  const Eigen::LDLT<Matrix6d> ldlt(H);
-  if (!(rows > 6.0) || ldlt.info() != Eigen::Success || !ldlt.isPositive()) {
-    return Matrix6d::Identity() * std::numeric_limits<double>::infinity();
-  }
-  const Eigen::SelfAdjointEigenSolver<Matrix6d> eigen(H);
-  if (eigen.info() != Eigen::Success || !(eigen.eigenvalues()[0] > 0.0)) {
+  const Eigen::SelfAdjointEigenSolver<Matrix6d> eigen(fullJtJ(sums));
+  if (!(rows > 6.0) || eigen.info() != Eigen::Success || !(eigen.eigenvalues()[0] > 0.0)) {
     return Matrix6d::Identity() * std::numeric_limits<double>::infinity();
   }
   const double variance = sums.residual_sq / (rows - 6.0);
