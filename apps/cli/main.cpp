@@ -5,6 +5,7 @@
 
 #include "cli/option_checks.h"
 #include "cli/align_command.h"
+#include "cli/localize_command.h"
 #include "cli/demo_command.h"
 #include "cli/diff_command.h"
 #include "cli/drift_command.h"
@@ -42,7 +43,7 @@ int runDefault() {
   std::printf(
       "strata: no command given; running the multi-session demo on the shipped room "
       "(see `strata --help` for fuse, sim, demo, diff, drift, mesh, esdf, select, eval-trajectory, "
-      "map, odometry, align, objects, plan, topo, explore, view, devices)\n");
+      "map, odometry, align, localize, objects, plan, topo, explore, view, devices)\n");
   return strata::apps::runDemo(strata::apps::DemoOptions{});
 }
 
@@ -75,6 +76,8 @@ int main(int argc, char** argv) {
   CLI::App* odometry = strata::apps::addOdometryCommand(app, odometry_options);
   strata::apps::AlignOptions align_options;
   CLI::App* align = strata::apps::addAlignCommand(app, align_options);
+  strata::apps::LocalizeOptions localize_options;
+  CLI::App* localize = strata::apps::addLocalizeCommand(app, localize_options);
   strata::apps::ObjectsOptions objects_options;
   CLI::App* objects = strata::apps::addObjectsCommand(app, objects_options);
   strata::apps::PlanOptions plan_options;
@@ -100,6 +103,7 @@ int main(int argc, char** argv) {
   if (map->parsed()) return strata::apps::runMap(map_options);
   if (odometry->parsed()) return strata::apps::runOdometry(odometry_options);
   if (align->parsed()) return strata::apps::runAlign(align_options);
+  if (localize->parsed()) return strata::apps::runLocalize(localize_options);
   if (objects->parsed()) return strata::apps::runObjects(objects_options);
   if (plan->parsed()) return strata::apps::runPlan(plan_options);
   if (topo->parsed()) return strata::apps::runTopo(topo_options);

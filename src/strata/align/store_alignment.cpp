@@ -22,23 +22,6 @@ std::string sessionWhat(const store::SessionRecord& s) {
   return "session " + std::to_string(s.id) + " '" + s.name + "' (" + s.source_folder + ")";
 }
 
-/// The frame of `session` nearest in time to `timestamp_s`, within the import's window.
-std::size_t frameAt(const std::vector<double>& times_s, double timestamp_s, const std::string& what) {
-  const auto after = std::lower_bound(times_s.begin(), times_s.end(), timestamp_s);
-  std::size_t best = times_s.size();
-  double best_dt = kMaxStampDifference_s;
-  for (auto it : {after, after == times_s.begin() ? after : after - 1}) {
-    if (it == times_s.end()) continue;
-    const double dt = std::abs(*it - timestamp_s);
-    if (dt <= best_dt) best = static_cast<std::size_t>(it - times_s.begin()), best_dt = dt;
-  }
-  if (best == times_s.size()) {
-    throw InputError(what + ": keyframe at " + std::to_string(timestamp_s) +
-                     " s has no frame within 20 ms in the folder (it changed since the import?)");
-  }
-  return best;
-}
-
 /// Information of each odometry edge between consecutive keyframes (the import's, or a later
 /// stage's); the pose graph's default where a pair has none.
 std::vector<store::Matrix6d> odometryInformation(const std::vector<std::int64_t>& ids,
@@ -58,17 +41,8 @@ std::vector<store::Matrix6d> odometryInformation(const std::vector<std::int64_t>
 void loadSession(store::Store& store, const store::SessionRecord& record,
                  const std::vector<store::EdgeRecord>& odometry_edges, const AlignConfig& config,
                  StoreAlignment& out, AlignSession& session) {
-  const std::string what = sessionWhat(record);
-  if (!fs::is_directory(record.source_folder)) throw InputError(what + ": the folder is gone");
-  const std::vector<store::ResourceProblem> problems = store.verifyResources(record.id);
-  if (!problems.empty()) {
-    throw InputError(what + ": " + std::to_string(problems.size()) +
-                     " file(s) changed since the import, first: " + problems.front().message);
-  }
-  DatasetOptions options;
-  options.trajectory_file = sessionOdometryFile(record.source_folder);
-  out.odometry_files.push_back(options.trajectory_file);
-  out.datasets.push_back(openDataset(record.source_folder, options));
+  out.odometry_files.push_back(sessionOdometryFile(record.source_folder));
+  out.datasets.push_back(openStoredSession(store, record));
   const Dataset& frames = *out.datasets.back();
   session.name = record.name;
   session.frames = &frames;
@@ -79,7 +53,7 @@ void loadSession(store::Store& store, const store::SessionRecord& record,
   }
   std::vector<std::int64_t> ids;
   for (const store::KeyframeRecord& k : store.keyframes(record.id)) {
-    const std::size_t frame = frameAt(session.frame_timestamps_s, k.timestamp_s, what);
+    const std::size_t frame = keyframeFrame(session.frame_timestamps_s, k.timestamp_s, record);
     if (!session.keyframes.empty() && frame <= session.keyframes.back()) continue;  // same frame
     session.keyframes.push_back(frame);
     ids.push_back(k.id);
@@ -121,6 +95,36 @@ void writeResults(store::Store& store, const StoreAlignment& a) {
 }
 
 }  // namespace
+
+std::unique_ptr<Dataset> openStoredSession(store::Store& store, const store::SessionRecord& record) {
+  const std::string what = sessionWhat(record);
+  if (!fs::is_directory(record.source_folder)) throw InputError(what + ": the folder is gone");
+  const std::vector<store::ResourceProblem> problems = store.verifyResources(record.id);
+  if (!problems.empty()) {
+    throw InputError(what + ": " + std::to_string(problems.size()) +
+                     " file(s) changed since the import, first: " + problems.front().message);
+  }
+  DatasetOptions options;
+  options.trajectory_file = sessionOdometryFile(record.source_folder);
+  return openDataset(record.source_folder, options);
+}
+
+std::size_t keyframeFrame(const std::vector<double>& times_s, double timestamp_s,
+                          const store::SessionRecord& record) {
+  const auto after = std::lower_bound(times_s.begin(), times_s.end(), timestamp_s);
+  std::size_t best = times_s.size();
+  double best_dt = kMaxStampDifference_s;
+  for (auto it : {after, after == times_s.begin() ? after : after - 1}) {
+    if (it == times_s.end()) continue;
+    const double dt = std::abs(*it - timestamp_s);
+    if (dt <= best_dt) best = static_cast<std::size_t>(it - times_s.begin()), best_dt = dt;
+  }
+  if (best == times_s.size()) {
+    throw InputError(sessionWhat(record) + ": keyframe at " + std::to_string(timestamp_s) +
+                     " s has no frame within 20 ms in the folder (it changed since the import?)");
+  }
+  return best;
+}
 
 std::string sessionOdometryFile(const std::string& folder) {
   const fs::path dir = fs::absolute(folder);

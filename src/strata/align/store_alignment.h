@@ -30,6 +30,15 @@ struct StoreAlignment {
 /// The odometry file of a session folder: odometry.txt when present, else groundtruth.txt.
 std::string sessionOdometryFile(const std::string& folder);
 
+/// A stored session's frames from its folder (poses: its odometry file), after checking that the
+/// folder is there and its files are those the import recorded: InputError naming the session
+/// otherwise.
+std::unique_ptr<Dataset> openStoredSession(store::Store& store, const store::SessionRecord& session);
+/// The index of the frame within the import's 20 ms of a keyframe's timestamp (frame times
+/// increasing); InputError naming the session when there is none (the folder changed).
+std::size_t keyframeFrame(const std::vector<double>& frame_times_s, double keyframe_time_s,
+                          const store::SessionRecord& session);
+
 /// Aligns every session of `store` (the first by id anchors the world frame) and writes the
 /// results into it.
 StoreAlignment alignStore(store::Store& store, const AlignConfig& config = {},
