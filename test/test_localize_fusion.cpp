@@ -72,7 +72,9 @@ TEST(PoseFusion, LocalisationsHoldDriftingOdometryToTheMap) {
   const std::vector<Eigen::Isometry3d> truth = truthLoop();
   const Eigen::Isometry3d T_O_W = pose(3.0, -2.0, 0.7);
   const std::vector<Eigen::Isometry3d> odometry = drifted(truth, T_O_W, 4);
-  PoseFusion fusion;
+  FusionConfig config;  // the localisations here are as good as they say: 1 cm
+  config.min_localization_sigma_m = 0.01;
+  PoseFusion fusion(config);
   std::mt19937 rng(9);
   double max_error = 0.0, odometry_error = 0.0;
   for (std::size_t i = 0; i < truth.size(); ++i) {

@@ -92,6 +92,9 @@ Json frameJson(const localize::FrameLocalization& f, const std::optional<FrameEr
     }
     j["candidates"] = l.candidates;
     j["time_ms"] = l.time_ms;
+    j["features_ms"] = l.features_ms;
+    j["surface_ms"] = l.surface_ms;
+    j["verify_ms"] = l.verify_ms;
   }
   if (!f.fused.note.empty()) j["note"] = f.fused.note;
   if (f.placed()) {

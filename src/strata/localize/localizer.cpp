@@ -73,18 +73,20 @@ Localization Localizer::localize(const ColorImage& color, const DepthImage& dept
                                  const CameraIntrinsics& intrinsics,
                                  const std::optional<PosePrior>& prior) const {
   const auto start = Clock::now();
+  const auto since = [](Clock::time_point t) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+  };
   Localization out;
   const PriorMapConfig& map_config = map_.config();
   if (depth.width_px != intrinsics.width_px || depth.height_px != intrinsics.height_px)
     throw InputError("localize: the depth image's size disagrees with the intrinsics");
+  auto step = Clock::now();
   align::KeyframeFeatures features;
   if (!color.empty()) features = align::extractFeatures(color, depth, intrinsics, map_config.features);
-  align::KeyframeSurface surface;
-  const bool surfaces = map_config.surfaces && config_.surface_candidates > 0;
-  if (surfaces) surface = align::describeSurface(depth, intrinsics, map_config.surface);
+  out.features_ms = since(step);
 
-  // Candidates: prior first (cheapest to confirm when the odometry is good), then appearance,
-  // then surface.
+  // Pass 1, appearance (ORB, PnP, ICP): the keyframes near the prior first (cheapest to confirm
+  // when the odometry is good), then the place index's.
   std::vector<Candidate> candidates;
   if (prior && config_.prior_candidates > 0) {
     for (std::size_t k : nearPrior(map_, *prior, config_)) {
@@ -99,25 +101,6 @@ Localization Localizer::localize(const ColorImage& color, const DepthImage& dept
       if (!taken(candidates, c.keyframe)) candidates.push_back({c.keyframe, "appearance"});
     }
   }
-  if (surfaces && !surface.global.empty()) {
-    std::vector<std::pair<double, std::size_t>> nearest;
-    for (std::size_t k = 0; k < map_.keyframes().size(); ++k) {
-      if (taken(candidates, k)) continue;
-      const double d = align::surfaceDistance(surface, map_.keyframes()[k].surface);
-      if (std::isfinite(d)) nearest.emplace_back(d, k);
-    }
-    const std::size_t n = std::min(config_.surface_candidates, nearest.size());
-    std::partial_sort(nearest.begin(), nearest.begin() + static_cast<std::ptrdiff_t>(n),
-                      nearest.end());
-    for (std::size_t i = 0; i < n; ++i) candidates.push_back({nearest[i].second, "surface"});
-  }
-  if (candidates.empty()) {
-    out.reason = features.size() == 0 && surface.global.empty()
-                     ? "no features and no surface to describe the frame"
-                     : "no candidate keyframe (place index, surface or prior)";
-    out.time_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-    return out;
-  }
 
   struct Accepted {
     std::size_t candidate = 0;
@@ -126,25 +109,64 @@ Localization Localizer::localize(const ColorImage& color, const DepthImage& dept
   };
   std::vector<Accepted> accepted;
   std::string last_reason;
-  const align::VerifyKeyframe live{&features, &depth, intrinsics, surfaces ? &surface : nullptr};
-  for (std::size_t c = 0; c < candidates.size(); ++c) {
-    const MapKeyframe& k = map_.keyframes()[candidates[c].keyframe];
-    const align::VerifyKeyframe a{&k.features, &k.depth, k.intrinsics,
-                                  surfaces && k.surface.size() > 0 ? &k.surface : nullptr};
-    ++out.candidates;
-    align::LoopMeasurement m = align::verifyLoop(a, live, config_.verify);
-    if (!m.accepted) {
-      last_reason = m.reason;
-      continue;
+  const auto verify = [&](std::size_t first, const align::KeyframeSurface* live_surface) {
+    step = Clock::now();
+    const align::VerifyKeyframe live{&features, &depth, intrinsics, live_surface};
+    for (std::size_t c = first; c < candidates.size(); ++c) {
+      if (accepted.size() >= config_.enough_accepted) break;
+      const MapKeyframe& k = map_.keyframes()[candidates[c].keyframe];
+      const align::VerifyKeyframe a{&k.features, &k.depth, k.intrinsics,
+                                    live_surface && k.surface.size() > 0 ? &k.surface : nullptr};
+      ++out.candidates;
+      align::LoopMeasurement m = align::verifyLoop(a, live, config_.verify);
+      if (!m.accepted) {
+        last_reason = m.reason;
+        continue;
+      }
+      accepted.push_back({c, m, k.T_W_C * m.T_a_b});
     }
-    accepted.push_back({c, m, k.T_W_C * m.T_a_b});
-    if (accepted.size() >= config_.enough_accepted) break;
+    out.verify_ms += since(step);
+  };
+  verify(0, nullptr);
+
+  // Pass 2, only when appearance verified nothing: the surface (FPFH RANSAC, ICP) against the
+  // prior's keyframes again and the keyframes nearest by surface descriptor.
+  align::KeyframeSurface surface;
+  if (accepted.empty() && map_config.surfaces && config_.surface_candidates > 0) {
+    step = Clock::now();
+    surface = align::describeSurface(depth, intrinsics, map_config.surface);
+    out.surface_ms = since(step);
+    const std::size_t first = candidates.size();
+    std::vector<Candidate> second;
+    for (const Candidate& c : candidates)
+      if (std::string(c.source) == "prior") second.push_back(c);
+    if (!surface.global.empty()) {
+      std::vector<std::pair<double, std::size_t>> nearest;
+      for (std::size_t k = 0; k < map_.keyframes().size(); ++k) {
+        if (taken(second, k)) continue;
+        const double d = align::surfaceDistance(surface, map_.keyframes()[k].surface);
+        if (std::isfinite(d)) nearest.emplace_back(d, k);
+      }
+      const std::size_t n = std::min(config_.surface_candidates, nearest.size());
+      std::partial_sort(nearest.begin(), nearest.begin() + static_cast<std::ptrdiff_t>(n),
+                        nearest.end());
+      for (std::size_t i = 0; i < n; ++i) second.push_back({nearest[i].second, "surface"});
+    }
+    candidates.insert(candidates.end(), second.begin(), second.end());
+    if (surface.size() > 0) verify(first, &surface);
+  }
+  if (candidates.empty()) {
+    out.reason = features.size() == 0 && surface.global.empty()
+                     ? "no features and no surface to describe the frame"
+                     : "no candidate keyframe (place index, surface or prior)";
+    out.time_ms = since(start);
+    return out;
   }
   out.accepted = accepted.size();
   if (accepted.empty()) {
     out.reason = "no candidate verified (" + std::to_string(out.candidates) +
                  " tried; last: " + last_reason + ")";
-    out.time_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    out.time_ms = since(start);
     return out;
   }
   const auto best = std::max_element(accepted.begin(), accepted.end(),
@@ -157,7 +179,7 @@ Localization Localizer::localize(const ColorImage& color, const DepthImage& dept
         rotationAngle(delta.linear()) > config_.max_disagreement_rad) {
       out.reason = "ambiguous: two verified keyframes disagree by " +
                    std::to_string(delta.translation().norm()) + " m";
-      out.time_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+      out.time_ms = since(start);
       return out;
     }
   }
@@ -175,7 +197,7 @@ Localization Localizer::localize(const ColorImage& color, const DepthImage& dept
   const Eigen::Matrix<double, 6, 1> values = eigen.eigenvalues().cwiseMax(1e-6);
   out.covariance = eigen.eigenvectors() * values.cwiseInverse().asDiagonal() *
                    eigen.eigenvectors().transpose();
-  out.time_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+  out.time_ms = since(start);
   return out;
 }
 

@@ -3,8 +3,9 @@
 // frame with its covariance, or "not localised" with the reason. The alignment pipeline's own
 // steps, not a second implementation: candidates from the place index (ORB appearance), from the
 // surface descriptor and, when the caller has a pose prior (the fused odometry), from the map
-// keyframes near that prior; each candidate verified by align::verifyLoop (PnP RANSAC + dense ICP,
-// or FPFH RANSAC + dense ICP without texture). The accepted verification with the most ICP
+// keyframes near that prior; each candidate verified by align::verifyLoop (PnP RANSAC + dense ICP;
+// only when no appearance candidate verifies is the frame's surface described and the prior's
+// and the surface descriptor's candidates verified by FPFH RANSAC + dense ICP). The accepted verification with the most ICP
 // overlap gives the pose; where several were accepted they must agree (within
 // max_disagreement), else the frame is refused as ambiguous.
 // Frames: W the map frame, C the live camera (x right, y down, z forward); metres, radians.
@@ -63,7 +64,10 @@ struct Localization {
   double overlap = 0.0;             // its ICP overlap
   bool from_surface = false;        // measured by the surface path
   std::string candidate_source;     // "appearance", "surface" or "prior"
-  double time_ms = 0.0;             // wall time of localize()
+  double time_ms = 0.0;             // wall time of localize(), of which:
+  double features_ms = 0.0;         //   ORB extraction
+  double surface_ms = 0.0;          //   the surface description (only when appearance failed)
+  double verify_ms = 0.0;           //   verifications
 };
 
 class Localizer {

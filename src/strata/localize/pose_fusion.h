@@ -41,8 +41,8 @@ struct FusionConfig {
   double init_max_disagreement_rad = 0.1;
   /// Localisations are not trusted beyond this (their stated covariance is floored: sigma of
   /// at least this, m and rad): dense ICP's own figure is far too sure of itself.
-  double min_localization_sigma_m = 0.01;
-  double min_localization_sigma_rad = 0.005;
+  double min_localization_sigma_m = 0.03;
+  double min_localization_sigma_rad = 0.02;
   /// Consecutive rejections after which the filter re-initialises (the correction itself is
   /// wrong, e.g. after a long gap in odometry).
   int reset_after_rejections = 8;
