@@ -20,5 +20,6 @@ void bindStore(py::module_& s);       // Store, Session, ImportResult
 void bindObjects(py::module_& o);     // build, ObjectDatabase, ObjectModel
 void bindExplore(py::module_& e);     // run, ExplorationRun
 void bindAlign(py::module_& a);       // align_store, Alignment, AlignedSession, AlignmentScore
+void bindLocalize(py::module_& l);    // PriorMap, Localizer, PoseFusion, localize_session
 
 }  // namespace strata::python

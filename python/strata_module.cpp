@@ -52,6 +52,8 @@ PYBIND11_MODULE(_strata, m) {
   bindStore(store);
   py::module_ align = m.def_submodule("align", "Multi-session alignment of a store's sessions");
   bindAlign(align);
+  py::module_ localize = m.def_submodule("localize", "Localisation against a prior map store");
+  bindLocalize(localize);
   py::module_ objects = m.def_submodule("objects", "The object database over sessions");
   bindObjects(objects);
   py::module_ explore = m.def_submodule("explore", "Closed-loop exploration of simulated worlds");

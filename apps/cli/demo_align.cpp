@@ -8,7 +8,6 @@
 #include "strata/sim/sensors/odometry_frame.h"
 
 namespace strata::apps {
-namespace {
 
 std::vector<std::optional<Eigen::Isometry3d>> mapped(const Eigen::Isometry3d& T,
                                                      const std::vector<Eigen::Isometry3d>& poses) {
@@ -16,8 +15,6 @@ std::vector<std::optional<Eigen::Isometry3d>> mapped(const Eigen::Isometry3d& T,
   for (const Eigen::Isometry3d& p : poses) out.emplace_back(T * p);
   return out;
 }
-
-}  // namespace
 
 DemoAlignResult useAlignedPoses(const std::vector<std::shared_ptr<sim::SimSessionDataset>>& sessions,
                                 bool quiet) {

@@ -25,6 +25,10 @@ struct DemoAlignResult {
   double align_s = 0.0;         // the alignment, wall time
 };
 
+/// T * each pose (a session's poses moved into another frame), as replaceGivenPoses takes them.
+std::vector<std::optional<Eigen::Isometry3d>> mapped(const Eigen::Isometry3d& T,
+                                                     const std::vector<Eigen::Isometry3d>& poses);
+
 /// Moves the sessions' (drifted) given poses into frames of their own, aligns them and replaces
 /// the given poses as described above. Throws like alignSessions.
 DemoAlignResult useAlignedPoses(const std::vector<std::shared_ptr<sim::SimSessionDataset>>& sessions,

@@ -90,7 +90,8 @@ change::WorldEvaluation evaluate(const sim::World& world, const DiffResult& resu
 Sessions makeSessions(const std::shared_ptr<const sim::World>& world,
                       const sim::SimSessionConfig& config, const DemoOptions& o,
                       std::vector<VioSessionResult>& vio,
-                      std::optional<DemoAlignResult>& alignment) {
+                      std::optional<DemoAlignResult>& alignment,
+                      std::optional<DemoLocalizeResult>& localization) {
   std::vector<std::shared_ptr<sim::SimSessionDataset>> simulated;
   std::size_t stereo_frames = 0;
   for (int s = 0; s < world->sessionCount(); ++s) {
@@ -105,6 +106,7 @@ Sessions makeSessions(const std::shared_ptr<const sim::World>& world,
     progress.finish();
   }
   if (o.align) alignment = useAlignedPoses(simulated, o.quiet);
+  if (o.localize) localization = useLocalizedPoses(simulated, o.quiet);
   Sessions sessions;
   for (auto& session : simulated)
     sessions.push_back(std::make_unique<change::RecordingSession>(std::move(session)));
@@ -136,6 +138,8 @@ DemoReport runDemoPipeline(const DemoOptions& o) {
   }
   if (o.vio.enabled) o.vio.validate();
   if (o.vio.enabled && o.align) throw InputError("--align and --vio cannot be combined (yet)");
+  if (o.localize && (o.align || o.vio.enabled))
+    throw InputError("--localize cannot be combined with --align or --vio (yet)");
   if (o.out_dir.empty()) throw InputError("--out DIR must not be empty");
   {  // The output folder before minutes of work: writable, not a file, not the world file.
     OutputPaths paths;
@@ -146,10 +150,11 @@ DemoReport runDemoPipeline(const DemoOptions& o) {
     paths.check();
   }
   const auto world = sim::loadWorld(o.world, o.seed, o.sessions);
-  sim::SimSessionConfig config = sim::sessionConfig(30.0, o.frames, !o.no_noise, o.align);
+  sim::SimSessionConfig config =
+      sim::sessionConfig(30.0, o.frames, !o.no_noise, o.align || o.localize);
   // Alignment finds places by ORB corners in the colour images: --align renders them with the
   // world-anchored texture real surfaces would have (flat shading leaves corners on edges only).
-  if (o.align) config.camera.color_texture = sim::WorldTextureConfig{};
+  if (o.align || o.localize) config.camera.color_texture = sim::WorldTextureConfig{};
   config.trajectory.rest_at_start_s = o.restSeconds();
   const MapConfig map_config = change::changeMapConfig(o.voxel_size_m);  // min_weight counts frames
   DiffRunInfo info;
@@ -163,7 +168,8 @@ DemoReport runDemoPipeline(const DemoOptions& o) {
   fs::create_directories(out);
   std::vector<VioSessionResult> vio;
   std::optional<DemoAlignResult> alignment;
-  const Sessions sessions = makeSessions(world, config, o, vio, alignment);
+  std::optional<DemoLocalizeResult> localization;
+  const Sessions sessions = makeSessions(world, config, o, vio, alignment, localization);
   std::vector<TsdfMap> maps;
   const DiffResult result = detectChanges(*context, map_config, info, sessions, o.quiet, maps);
   const DiffFiles files = writeDiffFiles(result, o.out_dir);
@@ -182,6 +188,7 @@ DemoReport runDemoPipeline(const DemoOptions& o) {
   }
   report.evaluation = evaluate(*world, result, sessions, info.change);
   report.alignment = alignment;
+  report.localization = localization;
   if (o.incremental) {
     const IncrementalResult incremental =
         runIncremental(*context, *world, sessions, map_config, info, report.evaluation, o.out_dir,
@@ -214,6 +221,9 @@ CLI::App* addDemoCommand(CLI::App& app, DemoOptions& o) {
   demo->add_flag("--align", o.align,
                  "Sessions drift in frames of their own; register them by multi-session "
                  "alignment and fuse on the aligned poses");
+  demo->add_flag("--localize", o.localize,
+                 "Teach and repeat: session 0's drifting odometry is the map; every later "
+                 "session is localised against it and fused on its fused poses");
   demo->add_option("--vio-width", o.vio.width_px, "With --vio: grey camera width, px")
       ->capture_default_str();
   demo->add_option("--vio-height", o.vio.height_px, "With --vio: grey camera height, px")

@@ -40,6 +40,9 @@ struct DemoOptions {
   /// Sessions in drifting frames of their own, registered by multi-session alignment
   /// (cli/demo_align.h) and fused on the aligned poses.
   bool align = false;
+  /// Teach and repeat without truth poses (cli/demo_localize.h): session 0's drifting odometry
+  /// is the map, every later session is localised against it and fused on its fused poses.
+  bool localize = false;
   /// Seconds the camera stands still before each path (the VIO's standstill start); < 0: 1.5 with
   /// vio, 0 without.
   double rest_s = -1.0;

@@ -141,6 +141,8 @@ void writeDemoReport(const DemoReport& report, const DiffResult& result, const D
   j["evaluation"] = evaluationJson(report.evaluation);
   if (!report.incremental_json.empty()) j["incremental"] = parseJson(report.incremental_json);
   if (report.alignment) j["alignment"] = parseJson(demoAlignJson(*report.alignment));
+  if (report.localization)
+    j["localization"] = parseJson(demoLocalizeJson(*report.localization));
   if (!report.objects_json.empty()) j["objects"] = parseJson(report.objects_json);
   j["change_detection"] = parseJson(diffReportJson(result, files, info));
   writeTextAtomically(path, jsonFileText(j));
@@ -182,6 +184,7 @@ std::string summarizeDemo(const DemoReport& report, const std::string& out_dir) 
   if (!report.incremental_summary.empty()) s << " " << report.incremental_summary;
   if (!report.sessions.empty() && report.sessions.front().vio) s << " " << summarizeVio(report);
   if (report.alignment) s << " " << summarizeDemoAlign(*report.alignment);
+  if (report.localization) s << " " << summarizeDemoLocalize(*report.localization);
   if (!report.objects_summary.empty()) s << " " << report.objects_summary;
   return s.str();
 }

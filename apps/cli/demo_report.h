@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "cli/demo_align.h"
+#include "cli/demo_localize.h"
 #include "cli/demo_vio.h"
 #include "cli/diff_report.h"
 #include "cli/select_incremental.h"
@@ -43,6 +44,7 @@ struct DemoReport {
   std::string incremental_json;                  // the same as a JSON object, "" without
   std::optional<IncrementalResult> incremental;  // the figures behind both
   std::optional<DemoAlignResult> alignment;      // `--align`
+  std::optional<DemoLocalizeResult> localization;  // `--localize`
   /// The object database built over the sessions as the last step (cli/demo_objects.h).
   std::string objects_summary;                      // one sentence, "" when not built
   std::string objects_json;                         // report.json's "objects", "" when not built

@@ -23,6 +23,7 @@ from ._strata import (  # noqa: F401 (re-exported)
     Error,
     InputError,
     KeyframeDecision,
+    localize,
     MapConfig,
     Mapper,
     MapperConfig,
@@ -48,6 +49,7 @@ _sys.modules[__name__ + ".sim"] = sim
 _sys.modules[__name__ + ".plan"] = plan
 _sys.modules[__name__ + ".store"] = store
 _sys.modules[__name__ + ".align"] = align
+_sys.modules[__name__ + ".localize"] = localize
 _sys.modules[__name__ + ".objects"] = objects
 _sys.modules[__name__ + ".explore"] = explore
 
@@ -102,6 +104,6 @@ io.image_from_open3d = _image_from_open3d
 __all__ = [
     "CameraIntrinsics", "DeviceError", "DiscoveredObject", "Error", "InputError",
     "KeyframeDecision", "MapConfig", "Mapper", "MapperConfig", "Mesh", "Rendering", "align",
-    "explore", "input_copies", "io", "objects", "odometry", "plan", "sim", "store", "trajectory",
-    "validation_errors",
+    "explore", "input_copies", "io", "localize", "objects", "odometry", "plan", "sim", "store",
+    "trajectory", "validation_errors",
 ]

@@ -9,6 +9,7 @@ import numpy.typing as npt
 from . import align as align
 from . import explore as explore
 from . import io as io
+from . import localize as localize
 from . import objects as objects
 from . import odometry as odometry
 from . import plan as plan

@@ -11,7 +11,8 @@ import strata
 
 MODULES = {"__init__": strata, "io": strata.io, "trajectory": strata.trajectory,
            "odometry": strata.odometry, "sim": strata.sim, "plan": strata.plan,
-           "store": strata.store, "align": strata.align, "objects": strata.objects,
+           "store": strata.store, "align": strata.align, "localize": strata.localize,
+           "objects": strata.objects,
            "explore": strata.explore}
 
 
