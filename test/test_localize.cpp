@@ -144,6 +144,14 @@ TEST(Localize, CommandWritesPosesAndSummaryAndLeavesTheMapUntouched) {
   missing.out_path = (split.root / "out" / "other.txt").string();
   EXPECT_EQ(apps::runLocalize(missing), 2);
   EXPECT_FALSE(fs::exists(missing.out_path));
+  // A corrupt map database: refused, named, left as it was.
+  apps::LocalizeOptions corrupt = missing;
+  corrupt.db_path = (split.root / "corrupt.sqlite").string();
+  test::writeRandomFile(corrupt.db_path, 64 * 1024, 5);
+  const std::vector<std::uint8_t> corrupt_bytes = readFile(corrupt.db_path);
+  EXPECT_EQ(apps::runLocalize(corrupt), 2);
+  EXPECT_EQ(readFile(corrupt.db_path), corrupt_bytes);
+  EXPECT_FALSE(fs::exists(corrupt.out_path));
   fs::remove_all(split.root);
 }
 
