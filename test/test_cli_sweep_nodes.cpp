@@ -1,9 +1,10 @@
-// Bad input to the LCM programs (`strata-mapper`, `strata-vio`, `strata-play`), each run as its
-// own process on memq:// (nothing on the network): each row names the command line, the exit
-// code (2: bad input, whether the parser or the program refuses it), the words the message must
-// hold, the inputs that must stay byte for byte as they were and the outputs that must not exist
-// afterwards. Every row must be refused before any work: the fixture's calibration is a skeleton
-// whose files are not EuRoC files, its TUM folder lacks its truth, its map file is not a map.
+// Bad input to the LCM programs (`strata-mapper`, `strata-vio`, `strata-play`, `strata-localizer`),
+// each run as its own process on memq:// (nothing on the network): each row names the command
+// line, the exit code (2: bad input, whether the parser or the program refuses it), the words the
+// message must hold, the inputs that must stay byte for byte as they were and the outputs that
+// must not exist afterwards. Every row must be refused before any work: the fixture's calibration
+// is a skeleton whose files are not EuRoC files, its TUM folder lacks its truth, its map file is
+// not a map.
 // A child that hangs is ended by SIGALRM after 30 s (and the row fails on its exit code).
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -256,6 +257,46 @@ TEST_F(NodeSweep, StrataPlay) {
   };
   EXPECT_EQ(test::sweepRows("strata-play", rows, dir_), rows.size());
 }
+
+#ifdef STRATA_LOCALIZER_BIN
+TEST_F(NodeSweep, StrataLocalizer) {
+  const fs::path db = path("map.strata"), report = path("localizer.json");  // db: not a map
+  auto localizer = [&](const std::vector<std::string>& args) {
+    const auto all = withArgs({"--url", "memq://", "--db", db.string(), "--report",
+                               report.string()}, args);
+    return std::function<int()>([all] { return runProgram(STRATA_LOCALIZER_BIN, all); });
+  };
+  const std::vector<Row> rows = {
+      {"no --db", [] { return runProgram(STRATA_LOCALIZER_BIN, {"--url", "memq://"}); }, 2,
+       {"--db is required"}, {}, {}},
+      {"--db that does not exist", localizer({"--db", str("nowhere.sqlite")}), 2,
+       {"nowhere.sqlite", "does not exist"}, {}, {report, path("nowhere.sqlite")}},
+      {"--db that is not a map database: refused, left as it is", localizer({}), 2,
+       {"cannot use the prior map", "not a database"}, {db}, {report}},
+      {"--every 0", localizer({"--every", "0"}), 2, {"--every must be 1 to 10000"}, {db},
+       {report}},
+      {"--every 1000000", localizer({"--every", "1000000"}), 2, {"--every must be 1 to 10000"},
+       {db}, {report}},
+      {"--max-odometry-gap 0", localizer({"--max-odometry-gap", "0"}), 2,
+       {"--max-odometry-gap must be"}, {db}, {report}},
+      {"--max-idle-s nan", localizer({"--max-idle-s", "nan"}), 2,
+       {"--max-idle-s", "not a finite number"}, {db}, {report}},
+      {"--report over the --db", localizer({"--report", db.string()}), 2,
+       {"--report", "the input --db"}, {db}, {}},
+      {"--report in a folder that does not exist",
+       localizer({"--report", str("no/such/folder/l.json")}), 2, {"--report", "does not exist"},
+       {db}, {path("no")}},
+      {"--pose-channel is the odometry's", localizer({"--pose-channel", "STRATA_POSE"}), 2,
+       {"both an input and an output"}, {db}, {report}},
+      {"--status-channel ''", localizer({"--status-channel", ""}), 2,
+       {"channel names must not be empty"}, {db}, {report}},
+      {"--url of no LCM provider", localizer({"--url", "bogus://"}), 2,
+       {"LCM input 'bogus://' could not be opened"}, {db}, {report}},
+      {"an unknown option", localizer({"--map", db.string()}), 2, {"--map"}, {db}, {report}},
+  };
+  EXPECT_EQ(test::sweepRows("strata-localizer", rows, dir_), rows.size());
+}
+#endif
 
 }  // namespace
 }  // namespace strata

@@ -15,6 +15,8 @@ inline constexpr const char* kStatsChannel = "STRATA_MAP_STATS";          // map
 inline constexpr const char* kChangeChannel = "STRATA_CHANGE_EVENT";      // change_event_t, out
 inline constexpr const char* kObjectsChannel = "STRATA_OBJECTS";         // object_update_t, out
 inline constexpr const char* kKeyframeChannel = "STRATA_KEYFRAME_SCORE";  // keyframe_score_t, out
+inline constexpr const char* kMapPoseChannel = "STRATA_MAP_POSE";  // pose_t T_W_C, map frame
+inline constexpr const char* kLocalizationChannel = "STRATA_LOCALIZATION";  // localization_status_t
 
 /// Multicast on the host only (ttl=0): nothing leaves the machine. A 4 MiB receive buffer holds
 /// a few 640x480 frames (the kernel default of 208 KiB holds none; net.core.rmem_max caps it).
