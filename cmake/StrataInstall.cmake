@@ -27,6 +27,7 @@ set(strata_component_io strata_io)
 set(strata_component_trajectory strata_trajectory)
 set(strata_component_store strata_store)
 set(strata_component_align strata_align strata_localize)
+set(strata_headers_align align localize)
 set(strata_component_odometry strata_odometry)
 set(strata_component_sim strata_sim strata_odometry_synthetic)  # + the odometry's simulated inputs
 set(strata_component_eval strata_eval strata_mapper_eval strata_occupancy_eval strata_change_eval
