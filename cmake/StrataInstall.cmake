@@ -35,7 +35,8 @@ set(strata_component_eval strata_eval strata_mapper_eval strata_occupancy_eval s
 set(strata_headers_eval mapper/eval occupancy/eval change/eval select/eval objects/eval)
 set(strata_component_objects strata_objects)
 set(strata_component_plan strata_plan)
-set(strata_component_explore strata_explore)
+set(strata_component_explore strata_explore strata_repeat)
+set(strata_headers_explore explore repeat)
 set(strata_component_lcm strata_lcm_types strata_lcm strata_lcm_objects)
 set(strata_all_components mapper io trajectory store align odometry sim eval objects plan explore
     lcm)

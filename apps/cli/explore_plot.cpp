@@ -4,6 +4,7 @@
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
+#include "cli/bgr_image.h"
 #include "cli/esdf_slice.h"
 #include "cli/explore_outputs.h"
 #include "strata/io/image_io.h"
@@ -14,20 +15,6 @@ namespace {
 constexpr int kWidth = 960, kHeight = 540;
 constexpr int kLeft = 80, kRight = 30, kTop = 50, kBottom = 60;
 const cv::Scalar kColours[] = {{40, 110, 230}, {60, 160, 40}, {200, 80, 60}, {120, 60, 160}};
-
-ColorImage toColorImage(const cv::Mat& bgr) {
-  ColorImage out(bgr.cols, bgr.rows);
-  for (int y = 0; y < bgr.rows; ++y) {
-    for (int x = 0; x < bgr.cols; ++x) {
-      const cv::Vec3b p = bgr.at<cv::Vec3b>(y, x);
-      const std::size_t i = 3 * (static_cast<std::size_t>(y) * bgr.cols + x);
-      out.rgb[i] = p[2];
-      out.rgb[i + 1] = p[1];
-      out.rgb[i + 2] = p[0];
-    }
-  }
-  return out;
-}
 
 cv::Mat fromColorImage(const ColorImage& image) {
   cv::Mat out(image.height_px, image.width_px, CV_8UC3);
@@ -93,7 +80,7 @@ void writeExploreCurvePng(const std::string& path, const std::string& world,
     cv::line(m, {kLeft + w - 200, y - 5}, {kLeft + w - 170, y - 5}, colour, 3);
     text(m, results[i].planner, kLeft + w - 160, y);
   }
-  writeColorPng(path, toColorImage(m));
+  writeColorPng(path, colorImageFromBgr(m));
 }
 
 void writeExplorePathPng(const std::string& path, const EsdfMap& esdf,
@@ -121,7 +108,7 @@ void writeExplorePathPng(const std::string& path, const EsdfMap& esdf,
     cv::circle(m, pixel(result.flown_W.front()), 6, {30, 200, 30}, -1, cv::LINE_AA);
     cv::circle(m, pixel(result.flown_W.back()), 6, {30, 30, 30}, 2, cv::LINE_AA);
   }
-  writeColorPng(path, toColorImage(m));
+  writeColorPng(path, colorImageFromBgr(m));
 }
 
 }  // namespace strata::apps

@@ -12,6 +12,8 @@
 #include "cli/esdf_command.h"
 #include "cli/eval_trajectory_command.h"
 #include "cli/explore_command.h"
+#include "cli/repeat_command.h"
+#include "cli/teach_command.h"
 #include "cli/fuse_command.h"
 #include "cli/map_command.h"
 #include "cli/mesh_command.h"
@@ -43,7 +45,7 @@ int runDefault() {
   std::printf(
       "strata: no command given; running the multi-session demo on the shipped room "
       "(see `strata --help` for fuse, sim, demo, diff, drift, mesh, esdf, select, eval-trajectory, "
-      "map, odometry, align, localize, objects, plan, topo, explore, view, devices)\n");
+      "map, odometry, align, localize, objects, plan, topo, explore, teach, repeat, view, devices)\n");
   return strata::apps::runDemo(strata::apps::DemoOptions{});
 }
 
@@ -86,6 +88,10 @@ int main(int argc, char** argv) {
   CLI::App* topo = strata::apps::addTopoCommand(app, topo_options);
   strata::apps::ExploreOptions explore_options;
   CLI::App* explore = strata::apps::addExploreCommand(app, explore_options);
+  strata::apps::TeachOptions teach_options;
+  CLI::App* teach = strata::apps::addTeachCommand(app, teach_options);
+  strata::apps::RepeatOptions repeat_options;
+  CLI::App* repeat = strata::apps::addRepeatCommand(app, repeat_options);
   strata::apps::ViewOptions view_options;
   CLI::App* view = strata::apps::addViewCommand(app, view_options);
   CLI::App* devices = app.add_subcommand("devices", "List the Vulkan devices");
@@ -108,6 +114,8 @@ int main(int argc, char** argv) {
   if (plan->parsed()) return strata::apps::runPlan(plan_options);
   if (topo->parsed()) return strata::apps::runTopo(topo_options);
   if (explore->parsed()) return strata::apps::runExplore(explore_options);
+  if (teach->parsed()) return strata::apps::runTeach(teach_options);
+  if (repeat->parsed()) return strata::apps::runRepeatCommand(repeat_options);
   if (view->parsed()) return strata::apps::runView(view_options);
   if (devices->parsed()) return listDevices();
   return runDefault();
