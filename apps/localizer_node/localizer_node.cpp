@@ -11,6 +11,7 @@
 #include "strata/lcm/convert_frame.h"
 #include "strata/lcm/convert_pose.h"
 #include "strata/lcm/lcm_time.h"
+#include "strata/lcm/receive_loop.h"
 #include "strata/pose_t.hpp"
 #include "strata/rgbd_frame_t.hpp"
 
@@ -68,15 +69,11 @@ LocalizerNode::~LocalizerNode() {
 }
 
 void LocalizerNode::receiveLoop() {
-  bool reported = false;
-  while (receiving_) {
-    if (input_.handleTimeout(kReceiveTimeoutMs) < 0) {
-      // NOTE: e.g. the end of a log file (file:// provider): keep localising what is offered.
-      if (!reported) log("LCM input stopped delivering messages (end of log or socket error)");
-      reported = true;
-      std::this_thread::sleep_for(std::chrono::milliseconds(kReceiveTimeoutMs));
-    }
-  }
+  // NOTE: the input stops e.g. at the end of a log file (file:// provider): keep localising what is
+  // offered.
+  lcm_io::receiveUntilStopped(input_, receiving_, kReceiveTimeoutMs, [this] {
+    log("LCM input stopped delivering messages (end of log or socket error)");
+  });
 }
 
 void LocalizerNode::onFrame(const lcm::ReceiveBuffer* buffer, const std::string& channel) {

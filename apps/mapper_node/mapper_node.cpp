@@ -5,10 +5,11 @@
 #include <exception>
 #include <thread>
 
+#include "strata/camera_info_t.hpp"
 #include "strata/core/error.h"
 #include "strata/lcm/convert_frame.h"
 #include "strata/lcm/convert_pose.h"
-#include "strata/camera_info_t.hpp"
+#include "strata/lcm/receive_loop.h"
 #include "strata/pose_t.hpp"
 
 namespace strata::apps {
@@ -55,15 +56,11 @@ MapperNode::~MapperNode() {
 }
 
 void MapperNode::receiveLoop() {
-  bool reported = false;
-  while (receiving_) {
-    if (input_.handleTimeout(kReceiveTimeoutMs) < 0) {
-      // NOTE: e.g. the end of a log file (file:// provider): keep fusing what is queued.
-      if (!reported) log("LCM input stopped delivering messages (end of log or socket error)");
-      reported = true;
-      std::this_thread::sleep_for(std::chrono::milliseconds(kReceiveTimeoutMs));
-    }
-  }
+  // NOTE: the input stops e.g. at the end of a log file (file:// provider): keep fusing what is
+  // queued.
+  lcm_io::receiveUntilStopped(input_, receiving_, kReceiveTimeoutMs, [this] {
+    log("LCM input stopped delivering messages (end of log or socket error)");
+  });
 }
 
 void MapperNode::onFrame(const lcm::ReceiveBuffer* buffer, const std::string& channel) {

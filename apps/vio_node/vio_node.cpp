@@ -8,6 +8,7 @@
 
 #include "strata/core/error.h"
 #include "strata/lcm/convert_frame.h"
+#include "strata/lcm/receive_loop.h"
 
 namespace strata::apps {
 namespace {
@@ -58,15 +59,11 @@ VioNode::~VioNode() {
 }
 
 void VioNode::receiveLoop() {
-  bool reported = false;
-  while (receiving_) {
-    if (input_.handleTimeout(kReceiveTimeoutMs) < 0) {
-      // NOTE: e.g. the end of a log file (file:// provider): keep processing what is queued.
-      if (!reported) std::fprintf(stderr, "strata-vio: LCM input stopped delivering messages\n");
-      reported = true;
-      std::this_thread::sleep_for(std::chrono::milliseconds(kReceiveTimeoutMs));
-    }
-  }
+  // NOTE: the input stops e.g. at the end of a log file (file:// provider): keep processing what is
+  // queued.
+  lcm_io::receiveUntilStopped(input_, receiving_, kReceiveTimeoutMs, [] {
+    std::fprintf(stderr, "strata-vio: LCM input stopped delivering messages\n");
+  });
 }
 
 void VioNode::onStereo(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
