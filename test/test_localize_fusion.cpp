@@ -92,7 +92,9 @@ TEST(PoseFusion, LocalisationsHoldDriftingOdometryToTheMap) {
   std::printf("fusion: largest error %.1f mm; odometry alone %.0f mm\n", 1e3 * max_error,
               1e3 * odometry_error);
   EXPECT_GT(odometry_error, 0.5);  // the drift is real
-  EXPECT_LT(max_error, 0.06);
+  // Between two localisations (1 m) this odometry drifts 4-6 cm; the bound leaves room for the
+  // draw of the noise, which differs between compilers.
+  EXPECT_LT(max_error, 0.08);
   EXPECT_EQ(fusion.rejected(), 0u);
 }
 
