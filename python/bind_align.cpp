@@ -8,7 +8,6 @@
 
 #include <cmath>
 #include <filesystem>
-#include <limits>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -50,20 +49,6 @@ class PyStore {
   std::unique_ptr<store::Store> store_;
 };
 
-/// poses as an N x 4 x 4 float64 array; nullopt rows are NaN.
-py::array_t<double> poseStack(const std::vector<std::optional<Eigen::Isometry3d>>& poses) {
-  const auto n = static_cast<py::ssize_t>(poses.size());
-  py::array_t<double> out({n, py::ssize_t{4}, py::ssize_t{4}});
-  auto o = out.mutable_unchecked<3>();
-  for (py::ssize_t i = 0; i < n; ++i) {
-    const auto& T = poses[static_cast<std::size_t>(i)];
-    for (int r = 0; r < 4; ++r)
-      for (int c = 0; c < 4; ++c)
-        o(i, r, c) = T ? T->matrix()(r, c) : std::numeric_limits<double>::quiet_NaN();
-  }
-  return out;
-}
-
 py::object optionalPose(const std::optional<Eigen::Isometry3d>& T) {
   return T ? py::object(poseTo(*T)) : py::object(py::none());
 }
@@ -82,8 +67,8 @@ py::dict keyframesOf(PyStore& self, std::int64_t session_id) {
   py::dict out;
   out["id"] = ids;
   out["timestamp_s"] = t;
-  out["T_S_C"] = poseStack(T_S_C);
-  out["T_W_C"] = poseStack(T_W_C);
+  out["T_S_C"] = poseStackTo(T_S_C);
+  out["T_W_C"] = poseStackTo(T_W_C);
   return out;
 }
 
@@ -123,7 +108,7 @@ PyAlignment alignmentFrom(const align::StoreAlignment& a,
     }
     session.trajectory = tumArray(world);
     session.odometry = tumArray(odometry);
-    session.keyframe_T_W_C = poseStack({r.keyframe_T_W_C.begin(), r.keyframe_T_W_C.end()});
+    session.keyframe_T_W_C = poseStackTo({r.keyframe_T_W_C.begin(), r.keyframe_T_W_C.end()});
     out.sessions.push_back(std::move(session));
   }
   out.candidates = a.result.candidates;

@@ -8,7 +8,6 @@
 #include <pybind11/stl.h>
 
 #include <filesystem>
-#include <limits>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -40,20 +39,6 @@ std::unique_ptr<PriorMap> openPriorMap(const std::string& path, int threads) {
   options.read_only = true;
   store::Store db(path, options);
   return std::unique_ptr<PriorMap>(new PriorMap(PriorMap::fromStore(db, config)));
-}
-
-/// Poses as an N x 4 x 4 float64 array; nullopt rows are NaN.
-py::array_t<double> poseStackOf(const std::vector<std::optional<Eigen::Isometry3d>>& poses) {
-  const auto n = static_cast<py::ssize_t>(poses.size());
-  py::array_t<double> out({n, py::ssize_t{4}, py::ssize_t{4}});
-  auto o = out.mutable_unchecked<3>();
-  for (py::ssize_t i = 0; i < n; ++i) {
-    const auto& T = poses[static_cast<std::size_t>(i)];
-    for (int r = 0; r < 4; ++r)
-      for (int c = 0; c < 4; ++c)
-        o(i, r, c) = T ? T->matrix()(r, c) : std::numeric_limits<double>::quiet_NaN();
-  }
-  return out;
 }
 
 localize::Localization localizeFrame(const localize::Localizer& self, const py::object& color,
@@ -102,7 +87,7 @@ PySessionLocalization sessionFrom(const localize::SessionLocalization& s) {
       note = "not localised: " + f.localization.reason;
     out.notes.push_back(note);
   }
-  out.T_W_C = poseStackOf(poses);
+  out.T_W_C = poseStackTo(poses);
   out.attempts = s.attempted;
   out.localizations = s.localized;
   out.accepted = s.accepted;
@@ -189,7 +174,7 @@ void bindLocalize(py::module_& l) {
           [](const PriorMap& m) {
             std::vector<std::optional<Eigen::Isometry3d>> poses;
             for (const auto& k : m.keyframes()) poses.emplace_back(k.T_W_C);
-            return poseStackOf(poses);
+            return poseStackTo(poses);
           },
           "K x 4 x 4 float64: each keyframe's T_W_C in the map frame")
       .def("__repr__", [](const PriorMap& m) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "strata/core/error.h"
@@ -101,6 +102,19 @@ py::array_t<double> poseTo(const Eigen::Isometry3d& T) {
   py::array_t<double> out({4, 4});
   for (int r = 0; r < 4; ++r)
     for (int c = 0; c < 4; ++c) out.mutable_at(r, c) = T.matrix()(r, c);
+  return out;
+}
+
+py::array_t<double> poseStackTo(const std::vector<std::optional<Eigen::Isometry3d>>& poses) {
+  const auto n = static_cast<py::ssize_t>(poses.size());
+  py::array_t<double> out({n, py::ssize_t{4}, py::ssize_t{4}});
+  auto o = out.mutable_unchecked<3>();
+  for (py::ssize_t i = 0; i < n; ++i) {
+    const auto& T = poses[static_cast<std::size_t>(i)];
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c)
+        o(i, r, c) = T ? T->matrix()(r, c) : std::numeric_limits<double>::quiet_NaN();
+  }
   return out;
 }
 

@@ -8,6 +8,7 @@
 // Thread safety: call with the GIL held.
 #include <pybind11/numpy.h>
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -34,6 +35,8 @@ std::size_t inputCopies();
 /// 4 x 4 camera to world, validated (validatePose).
 Eigen::Isometry3d poseFrom(const py::array& pose, const char* what);
 py::array_t<double> poseTo(const Eigen::Isometry3d& T);
+/// Poses as an N x 4 x 4 float64 array; nullopt rows are NaN.
+py::array_t<double> poseStackTo(const std::vector<std::optional<Eigen::Isometry3d>>& poses);
 /// N x 3 (any float dtype), every value finite.
 std::vector<Eigen::Vector3f> pointsFrom(const py::array& points, const char* what);
 
