@@ -15,6 +15,7 @@
 #include "strata/io/odometry_frame_file.h"
 #include "strata/sim/session/drifted_session.h"
 #include "strata/store/session_import.h"
+#include "split_kitchen.h"
 #include "store_test_helpers.h"
 #include "test_utils.h"
 
@@ -23,37 +24,19 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct SplitKitchen {
-  fs::path root, anchor, drifted;
-  Eigen::Isometry3d T_W_S_true = Eigen::Isometry3d::Identity();
-};
+using test::SplitKitchen;
 
 /// Frames 0-74 as the anchor (odometry = the reference poses), 75-149 offset and drifting.
 SplitKitchen splitKitchen(const std::string& kitchen, const std::string& name) {
-  SplitKitchen out;
-  out.root = test::freshStoreDir(name);
-  out.anchor = out.root / "kitchen_a";
-  out.drifted = out.root / "kitchen_b";
-  sim::DriftedSessionConfig a;
-  a.first_frame = 0;
-  a.last_frame = 74;
-  a.offset = false;
-  a.drift.translation_sigma_m_per_sqrt_m = 0.0;
-  a.drift.yaw_sigma_rad_per_sqrt_m = 0.0;
-  sim::writeDriftedSession(kitchen, out.anchor.string(), a);
-  sim::DriftedSessionConfig b;
-  b.first_frame = 75;
-  b.last_frame = 149;
-  b.seed = 3;
-  out.T_W_S_true = sim::writeDriftedSession(kitchen, out.drifted.string(), b).T_W_S;
-  return out;
+  return test::splitKitchen(kitchen, name, "kitchen_a", "kitchen_b",
+                            sim::DriftConfig{}.translation_sigma_m_per_sqrt_m);
 }
 
 std::unique_ptr<store::Store> importBoth(const SplitKitchen& split) {
   auto db = std::make_unique<store::Store>((split.root / "map.sqlite").string());
   store::ImportOptions import;
   import.keyframe_every = 3;
-  for (const fs::path& dir : {split.anchor, split.drifted})
+  for (const fs::path& dir : {split.first, split.second})
     store::importTumSession(*db, dir.string(), import);
   return db;
 }
@@ -63,8 +46,8 @@ double angleDeg(const Eigen::Matrix3d& R) { return Eigen::AngleAxisd(R).angle() 
 TEST(AlignStore, RedkitchenSplitInTwoRecoversTheSecondHalfsOffset) {
   STRATA_REQUIRE_DATA("redkitchen", kitchen);
   const SplitKitchen split = splitKitchen(kitchen, "align_kitchen");
-  EXPECT_TRUE(readOdometryFrame((split.drifted / "odometry_frame.txt").string())
-                  .isApprox(split.T_W_S_true, 1e-6));
+  EXPECT_TRUE(readOdometryFrame((split.second / "odometry_frame.txt").string())
+                  .isApprox(split.T_W_S_second, 1e-6));
   auto db = importBoth(split);
   const StoreAlignment a = alignStore(*db);
   ASSERT_EQ(a.result.sessions.size(), 2u);
@@ -73,7 +56,7 @@ TEST(AlignStore, RedkitchenSplitInTwoRecoversTheSecondHalfsOffset) {
   // every 0.1 degree of rotation error would add millimetres per metre of lever arm).
   const Eigen::Isometry3d& T_S_C0 = a.result.sessions[1].frame_T_S_C.front();
   const Eigen::Isometry3d error =
-      (split.T_W_S_true * T_S_C0).inverse() * *a.result.sessions[1].T_W_S * T_S_C0;
+      (split.T_W_S_second * T_S_C0).inverse() * *a.result.sessions[1].T_W_S * T_S_C0;
   std::printf("redkitchen split: offset recovered within %.1f mm and %.3f deg (%zu loops kept of "
               "%zu verified, %zu candidates)\n",
               1e3 * error.translation().norm(), angleDeg(error.linear()),
@@ -108,7 +91,7 @@ TEST(AlignStore, ASessionWhoseFolderIsGoneIsRefusedAndTheStoreKeptAsItWas) {
   STRATA_REQUIRE_DATA("redkitchen", kitchen);
   const SplitKitchen split = splitKitchen(kitchen, "align_changed");
   auto db = importBoth(split);
-  fs::rename(split.drifted, split.root / "moved");  // the second session's folder is gone
+  fs::rename(split.second, split.root / "moved");  // the second session's folder is gone
   try {
     alignStore(*db);
     FAIL() << "a session whose folder is gone was aligned";
@@ -124,7 +107,7 @@ TEST(AlignCli, WritesTrajectoriesLoopsReportAndPictureAndScoresAgainstTheTruth) 
   STRATA_REQUIRE_DATA("redkitchen", kitchen);
   const SplitKitchen split = splitKitchen(kitchen, "align_cli");
   apps::AlignOptions o;
-  o.session_dirs = {split.anchor.string(), split.drifted.string()};
+  o.session_dirs = {split.first.string(), split.second.string()};
   o.out_dir = (split.root / "out").string();
   o.keyframe_every = 3;
   o.quiet = true;

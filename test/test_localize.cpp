@@ -15,8 +15,8 @@
 #include "strata/io/open_dataset.h"
 #include "strata/io/tum_format.h"
 #include "strata/localize/session_localization.h"
-#include "strata/sim/session/drifted_session.h"
 #include "strata/store/session_import.h"
+#include "split_kitchen.h"
 #include "store_test_helpers.h"
 #include "test_utils.h"
 
@@ -30,23 +30,10 @@ struct Split {
 };
 
 Split splitKitchen(const std::string& kitchen, const std::string& name) {
-  Split out;
-  out.root = test::freshStoreDir(name);
-  out.map_session = out.root / "kitchen_map";
-  out.live_session = out.root / "kitchen_live";
-  sim::DriftedSessionConfig a;
-  a.first_frame = 0;
-  a.last_frame = 74;
-  a.offset = false;
-  a.drift.translation_sigma_m_per_sqrt_m = 0.0;
-  a.drift.yaw_sigma_rad_per_sqrt_m = 0.0;
-  sim::writeDriftedSession(kitchen, out.map_session.string(), a);
-  sim::DriftedSessionConfig b;
-  b.first_frame = 75;
-  b.last_frame = 149;
-  b.seed = 3;
-  b.drift.translation_sigma_m_per_sqrt_m = 0.03;
-  sim::writeDriftedSession(kitchen, out.live_session.string(), b);
+  // The second half drifts 3 cm per sqrt(m): more than the alignment tests' default.
+  const test::SplitKitchen split =
+      test::splitKitchen(kitchen, name, "kitchen_map", "kitchen_live", 0.03);
+  Split out{split.root, split.first, split.second, {}};
   out.db = out.root / "map.sqlite";
   store::Store db(out.db.string());
   store::ImportOptions import;
