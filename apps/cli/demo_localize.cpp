@@ -29,14 +29,7 @@ localize::PriorMap teachMap(const sim::SimSessionDataset& teach, bool quiet) {
   std::atomic<std::size_t> done{0};
   std::mutex bar_mutex;
   parallelForEach(teach.size(), config.threads, [&](std::size_t i) {
-    const RgbdFrame frame = teach.load(i);
-    localize::MapKeyframe& k = keyframes[i];
-    k.timestamp_s = frame.timestamp_s;
-    k.T_W_C = frame.T_W_C;
-    k.intrinsics = teach.intrinsics();
-    k.depth = frame.depth;
-    k.features = align::extractFeatures(frame.color, frame.depth, k.intrinsics, config.features);
-    k.surface = align::describeSurface(frame.depth, k.intrinsics, config.surface);
+    keyframes[i] = localize::describeKeyframe(teach.load(i), teach.intrinsics(), config);
     const std::size_t finished = ++done;
     std::lock_guard<std::mutex> lock(bar_mutex);
     bar.update(finished);

@@ -41,6 +41,19 @@ PriorMap::PriorMap(std::vector<MapKeyframe> keyframes, const PriorMapConfig& con
   }
 }
 
+MapKeyframe describeKeyframe(RgbdFrame frame, const CameraIntrinsics& intrinsics,
+                             const PriorMapConfig& config) {
+  MapKeyframe k;
+  k.timestamp_s = frame.timestamp_s;
+  k.T_W_C = frame.T_W_C;
+  k.intrinsics = intrinsics;
+  if (!frame.color.empty())
+    k.features = align::extractFeatures(frame.color, frame.depth, intrinsics, config.features);
+  if (config.surfaces) k.surface = align::describeSurface(frame.depth, intrinsics, config.surface);
+  k.depth = std::move(frame.depth);
+  return k;
+}
+
 Eigen::AlignedBox3d PriorMap::bounds() const {
   Eigen::AlignedBox3d box;
   for (const MapKeyframe& k : keyframes_) box.extend(k.T_W_C.translation());
@@ -96,14 +109,14 @@ PriorMap PriorMap::fromStore(store::Store& store, const PriorMapConfig& config,
     LoadJob& job = jobs[j];
     MapKeyframe& k = job.keyframe;
     RgbdFrame frame = job.frames->load(job.frame);
-    k.intrinsics = job.frames->intrinsics();
-    k.depth = std::move(frame.depth);
-    if (job.stored) {
-      k.features = align::liftFeatures(*job.stored, k.depth, k.intrinsics, config.features);
-    } else if (!frame.color.empty()) {
-      k.features = align::extractFeatures(frame.color, k.depth, k.intrinsics, config.features);
-    }
-    if (config.surfaces) k.surface = align::describeSurface(k.depth, k.intrinsics, config.surface);
+    const CameraIntrinsics intrinsics = job.frames->intrinsics();
+    if (job.stored) frame.color = ColorImage();  // the stored features are lifted instead
+    MapKeyframe described = describeKeyframe(std::move(frame), intrinsics, config);
+    k.intrinsics = intrinsics;
+    k.depth = std::move(described.depth);
+    k.features = job.stored ? align::liftFeatures(*job.stored, k.depth, intrinsics, config.features)
+                            : std::move(described.features);
+    k.surface = std::move(described.surface);
     const std::size_t finished = ++done;
     if (progress) {
       std::lock_guard<std::mutex> lock(progress_mutex);

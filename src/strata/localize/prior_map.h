@@ -47,6 +47,12 @@ struct MapKeyframe {
   align::KeyframeSurface surface;  // empty when PriorMapConfig::surfaces is false
 };
 
+/// A frame as a map keyframe at pose frame.T_W_C: its depth, ORB features from its colour (none
+/// without colour) and, with config.surfaces, its surface description. InputError for images
+/// whose sizes disagree with the intrinsics.
+MapKeyframe describeKeyframe(RgbdFrame frame, const CameraIntrinsics& intrinsics,
+                             const PriorMapConfig& config);
+
 /// done of total keyframes loaded.
 using PriorMapProgress = std::function<void(std::size_t done, std::size_t total)>;
 
