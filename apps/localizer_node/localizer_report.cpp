@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
+#include "strata/core/statistics.h"
+
 namespace strata::apps {
 namespace {
 
@@ -19,27 +21,21 @@ double posesPerSecond(const LocalizerSnapshot& s) {
                              : 0.0;
 }
 
+/// The interpolated q-quantile of the times, 0 when there are none (nothing timed yet).
+double timeQuantile(const std::vector<double>& ms, double q) {
+  return ms.empty() ? 0.0 : quantile(ms, q);
+}
+
 Json timingJson(const std::vector<double>& ms) {
   Json j;
   j["count"] = ms.size();
-  j["median_ms"] = quantile(ms, 0.5);
-  j["p90_ms"] = quantile(ms, 0.9);
+  j["median_ms"] = timeQuantile(ms, 0.5);
+  j["p90_ms"] = timeQuantile(ms, 0.9);
   j["max_ms"] = ms.empty() ? 0.0 : *std::max_element(ms.begin(), ms.end());
   return j;
 }
 
 }  // namespace
-
-double quantile(std::vector<double> values, double q) {
-  if (values.empty()) return 0.0;
-  const double clamped = std::clamp(q, 0.0, 1.0);
-  const auto rank =
-      static_cast<std::size_t>(std::ceil(clamped * static_cast<double>(values.size())));
-  const std::size_t index = rank == 0 ? 0 : rank - 1;
-  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(index),
-                   values.end());
-  return values[index];
-}
 
 std::string localizerStatusLine(const LocalizerSnapshot& s) {
   const LocalizerCounters& c = s.counters;
@@ -81,8 +77,9 @@ std::string localizerSummary(const LocalizerSnapshot& s) {
       static_cast<long long>(s.corrections_rejected), static_cast<long long>(c.odometry_received),
       static_cast<long long>(c.odometry_refused), static_cast<long long>(c.odometry_gaps),
       static_cast<long long>(c.poses_published), posesPerSecond(s),
-      static_cast<long long>(c.poses_uninitialised), quantile(s.localize_ms, 0.5),
-      quantile(s.localize_ms, 0.9), quantile(s.latency_ms, 0.5), quantile(s.latency_ms, 0.9));
+      static_cast<long long>(c.poses_uninitialised), timeQuantile(s.localize_ms, 0.5),
+      timeQuantile(s.localize_ms, 0.9), timeQuantile(s.latency_ms, 0.5),
+      timeQuantile(s.latency_ms, 0.9));
   return text;
 }
 

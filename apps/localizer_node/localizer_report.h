@@ -42,8 +42,6 @@ struct LocalizerSnapshot {
   std::string stopped_by;           // "signal" or "idle" once stopped, else ""
 };
 
-/// The q-quantile (0..1) of `values` (nearest rank), 0 when empty.
-double quantile(std::vector<double> values, double q);
 
 /// One line: frames in, tried, localised, skipped; corrections; poses out.
 std::string localizerStatusLine(const LocalizerSnapshot& s);
