@@ -54,12 +54,6 @@ MapKeyframe describeKeyframe(RgbdFrame frame, const CameraIntrinsics& intrinsics
   return k;
 }
 
-Eigen::AlignedBox3d PriorMap::bounds() const {
-  Eigen::AlignedBox3d box;
-  for (const MapKeyframe& k : keyframes_) box.extend(k.T_W_C.translation());
-  return box;
-}
-
 PriorMap PriorMap::fromStore(store::Store& store, const PriorMapConfig& config,
                              const PriorMapProgress& progress) {
   config.validate();

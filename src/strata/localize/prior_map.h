@@ -72,8 +72,6 @@ class PriorMap {
   /// Names of the sessions the map holds and of those left out (unaligned), for reports.
   const std::vector<std::string>& sessions() const { return sessions_; }
   const std::vector<std::string>& skipped_sessions() const { return skipped_sessions_; }
-  /// Axis-aligned bounds of the keyframes' camera centres (map frame).
-  Eigen::AlignedBox3d bounds() const;
 
  private:
   PriorMapConfig config_;
